@@ -1,0 +1,223 @@
+/*
+ * Drape: cloth simulation for games. The public C ABI (C99).
+ *
+ * Rules (see shared docs/architecture.md):
+ *  - every function returns a drape_status; results come back through out-pointers;
+ *  - on failure drape_last_error() holds a thread-local, human-readable message and the object
+ *    the call was made on is unchanged;
+ *  - every input struct starts with `struct_size` (set it to sizeof the struct);
+ *  - structs shared with C# name their twin; a test checks size and field offsets.
+ *
+ * Threading: a world and the cloths in it may be used from one thread at a time (any thread).
+ * Different worlds are independent. The CPU_THREADED backend runs its own workers inside a call.
+ *
+ * Units: metres, kilograms, seconds. Positions are in simulation (world) space.
+ */
+#ifndef DRAPE_DRAPE_H
+#define DRAPE_DRAPE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(_WIN32)
+#  if defined(DRAPE_BUILDING_LIBRARY)
+#    define DRAPE_API __declspec(dllexport)
+#  else
+#    define DRAPE_API __declspec(dllimport)
+#  endif
+#else
+#  define DRAPE_API __attribute__((visibility("default")))
+#endif
+
+/** Bumped on any incompatible change of this header. */
+#define DRAPE_ABI_VERSION 1
+
+/* C# twin: Drape.Core.Status */
+typedef enum drape_status {
+    DRAPE_OK = 0,
+    DRAPE_ERROR_NULL_POINTER = 1,        /**< a required pointer was NULL */
+    DRAPE_ERROR_INVALID_HANDLE = 2,      /**< handle is not a live object of the right kind */
+    DRAPE_ERROR_STRUCT_SIZE = 3,         /**< struct_size does not match this library */
+    DRAPE_ERROR_INVALID_ENUM = 4,        /**< enum value out of range */
+    DRAPE_ERROR_INVALID_ARGUMENT = 5,    /**< a size, count or value is out of its allowed range */
+    DRAPE_ERROR_NOT_FINITE = 6,          /**< a float input was NaN or infinite */
+    DRAPE_ERROR_INDEX_OUT_OF_RANGE = 7,  /**< a vertex or triangle index is out of range */
+    DRAPE_ERROR_DEGENERATE_MESH = 8,     /**< zero-area or repeated-index triangle, or no edges */
+    DRAPE_ERROR_BUFFER_TOO_SMALL = 9,    /**< caller memory/layout cannot hold the output */
+    DRAPE_ERROR_BACKEND_UNAVAILABLE = 10,/**< backend not compiled in or not usable here */
+    DRAPE_ERROR_UNSTABLE = 11,           /**< step diverged; the last good state was restored */
+    DRAPE_ERROR_OUT_OF_MEMORY = 12,
+    DRAPE_ERROR_GL = 13,                 /**< OpenGL ES error (message carries the GL log) */
+    DRAPE_ERROR_INTERNAL = 14
+} drape_status;
+
+/* C# twin: Drape.Core.Backend */
+typedef enum drape_backend {
+    DRAPE_BACKEND_CPU = 0,          /**< one thread, deterministic (same input -> same bits) */
+    DRAPE_BACKEND_CPU_THREADED = 1, /**< the world's worker pool; same results as CPU */
+    DRAPE_BACKEND_GLES = 2          /**< OpenGL ES 3.0 transform feedback */
+} drape_backend;
+
+/* C# twin: Drape.Core.Model */
+typedef enum drape_model {
+    DRAPE_MODEL_MASS_SPRING = 0, /**< Hooke springs + damping, Verlet (paper eq. 1-3) */
+    DRAPE_MODEL_PBD = 1,         /**< stretch constraints, stiffness in [0,1] (paper eq. 4-8) */
+    DRAPE_MODEL_XPBD = 2         /**< compliance = 1/stiffness in physical units; the default */
+} drape_model;
+
+/* Spring / constraint groups of the 12-neighbour stencil (grid) or of a mesh. */
+typedef enum drape_group {
+    DRAPE_GROUP_STRUCTURAL = 0, /**< grid: (+-1,0),(0,+-1); mesh: triangle edges */
+    DRAPE_GROUP_SHEAR = 1,      /**< grid: (+-1,+-1); mesh: none */
+    DRAPE_GROUP_BEND = 2,       /**< grid: (+-2,0),(0,+-2); mesh: vertices opposite each edge */
+    DRAPE_GROUP_COUNT = 3
+} drape_group;
+
+typedef struct drape_world drape_world;
+typedef struct drape_cloth drape_cloth;
+
+/* C# twin: Drape.Core.WorldDesc */
+typedef struct drape_world_desc {
+    uint32_t struct_size;
+    uint32_t thread_count; /**< workers for CPU_THREADED including the caller; 0 = hardware count */
+} drape_world_desc;
+
+/* C# twin: Drape.Core.ClothDesc. Common to grid and mesh creation. */
+typedef struct drape_cloth_desc {
+    uint32_t struct_size;
+    uint32_t backend;   /**< drape_backend */
+    float total_mass;   /**< kg, > 0; spread over vertices by area */
+} drape_cloth_desc;
+
+/* C# twin: Drape.Core.GridDesc. Vertex (c, r) is at origin + axis_u*width*c/(columns-1)
+ * + axis_v*height*r/(rows-1); caller vertex index = r*columns + c. */
+typedef struct drape_grid_desc {
+    uint32_t struct_size;
+    uint32_t columns;   /**< vertices per row, >= 1 (columns*rows >= 2) */
+    uint32_t rows;      /**< >= 1 */
+    float width;        /**< m, > 0 */
+    float height;       /**< m, > 0 */
+    float origin[3];    /**< m, position of vertex (0,0) */
+    float axis_u[3];    /**< unit direction of increasing column; all zero = +x */
+    float axis_v[3];    /**< unit direction of increasing row; all zero = -z */
+} drape_grid_desc;
+
+/* C# twin: Drape.Core.MeshDesc. Vertices closer than weld_distance are simulated as one
+ * (Unity splits vertices at UV seams) and written back to every copy on output. */
+typedef struct drape_mesh_desc {
+    uint32_t struct_size;
+    uint32_t vertex_count;    /**< >= 3 */
+    const float* positions;   /**< vertex_count * 3 floats */
+    uint32_t index_count;     /**< multiple of 3, >= 3 */
+    const uint32_t* indices;  /**< triangle list */
+    float weld_distance;      /**< m, >= 0; 0 welds only bit-identical positions */
+} drape_mesh_desc;
+
+/* C# twin: Drape.Core.Params. Settable at any time; drape_params_default fills the defaults. */
+typedef struct drape_params {
+    uint32_t struct_size;
+    uint32_t model;           /**< drape_model; default XPBD */
+    float stiffness[3];       /**< per drape_group. MASS_SPRING, XPBD: N/m per spring (0 = group off);
+                                   PBD: fraction in [0,1] per iteration. Default 2000, 1000, 200 */
+    float damping;            /**< N*s/m, along each spring (eq. 2; XPBD: constraint damping). Default 0.5 */
+    float gravity[3];         /**< m/s^2. Default (0,-9.81,0) */
+    float wind[3];            /**< m/s, air velocity. Default 0 */
+    float air_drag;           /**< 1/s, a += air_drag*(wind - v). Default 0.1 */
+    uint32_t substeps;        /**< per step; 0 = automatic (MASS_SPRING: from the stability bound) */
+    uint32_t iterations;      /**< solver iterations per substep (PBD, XPBD), >= 1. Default 4 */
+} drape_params;
+
+/* C# twin: Drape.Core.VertexLayout. Output goes to dst + i*stride + offset for caller vertex i. */
+typedef struct drape_vertex_layout {
+    uint32_t struct_size;
+    uint32_t stride;          /**< bytes between vertices, >= 12, multiple of 4 */
+    int32_t position_offset;  /**< bytes, multiple of 4, or -1 = do not write */
+    int32_t normal_offset;    /**< bytes, multiple of 4, or -1 = do not write */
+} drape_vertex_layout;
+
+/* C# twin: Drape.Core.Pin. Pins a caller vertex (inverse mass 0) at a target; pinning again moves
+ * it (the move is spread over the next step's substeps). */
+typedef struct drape_pin {
+    uint32_t struct_size;
+    uint32_t vertex;
+    float position[3];
+} drape_pin;
+
+/* C# twin: Drape.Core.ClothInfo */
+typedef struct drape_cloth_info {
+    uint32_t struct_size;
+    uint32_t vertex_count;    /**< caller vertices (before welding) */
+    uint32_t particle_count;  /**< simulated particles (after welding) */
+    uint32_t spring_count[3]; /**< springs/constraints per drape_group */
+    uint32_t triangle_count;  /**< 0 for a grid with a single row or column */
+    uint32_t backend;
+} drape_cloth_info;
+
+/* C# twin: Drape.Core.Stats. Describes the last step. */
+typedef struct drape_stats {
+    uint32_t struct_size;
+    float step_ms;            /**< wall time of the last step */
+    uint32_t substeps;        /**< substeps used by the last step */
+    uint32_t iterations;      /**< iterations per substep used by the last step */
+    float max_strain;         /**< max over structural+shear springs of |l/L0 - 1| */
+    float rms_strain;
+    float kinetic_energy;     /**< J */
+    float potential_energy;   /**< J, gravity relative to y = 0 */
+    float elastic_energy;     /**< J, springs (MASS_SPRING, XPBD); 0 for PBD */
+    uint32_t non_finite;      /**< 1 if the last step produced NaN/Inf (and was rolled back) */
+    uint32_t unstable_steps;  /**< steps rolled back since creation */
+} drape_stats;
+
+DRAPE_API uint32_t drape_abi_version(void);
+/** Human-readable message for the last failure on this thread ("" if none). Never NULL. */
+DRAPE_API const char* drape_last_error(void);
+/** *out_available = 1 if cloths with this backend can be created now. */
+DRAPE_API drape_status drape_backend_available(uint32_t backend, uint32_t* out_available);
+DRAPE_API drape_status drape_params_default(drape_params* out_params);
+
+DRAPE_API drape_status drape_world_create(const drape_world_desc* desc, drape_world** out_world);
+/** Destroys the world and every cloth still in it. */
+DRAPE_API drape_status drape_world_destroy(drape_world* world);
+/** Steps every cloth of the world by dt seconds (0 < dt <= 1). Returns the first failure;
+ *  the other cloths are still stepped. */
+DRAPE_API drape_status drape_world_step(drape_world* world, float dt);
+
+DRAPE_API drape_status drape_cloth_create_grid(drape_world* world, const drape_cloth_desc* desc,
+                                               const drape_grid_desc* grid, drape_cloth** out_cloth);
+DRAPE_API drape_status drape_cloth_create_mesh(drape_world* world, const drape_cloth_desc* desc,
+                                               const drape_mesh_desc* mesh, drape_cloth** out_cloth);
+DRAPE_API drape_status drape_cloth_destroy(drape_cloth* cloth);
+
+DRAPE_API drape_status drape_cloth_set_params(drape_cloth* cloth, const drape_params* params);
+DRAPE_API drape_status drape_cloth_get_params(const drape_cloth* cloth, drape_params* out_params);
+/** Per caller vertex, >= 0 and finite; 0 pins the vertex where it is. Welded copies take the
+ *  smallest value given for them. count must equal the vertex count. */
+DRAPE_API drape_status drape_cloth_set_inverse_masses(drape_cloth* cloth, const float* inverse_masses,
+                                                      uint32_t count);
+/** Pins (or moves already pinned) vertices; see drape_pin. */
+DRAPE_API drape_status drape_cloth_set_pins(drape_cloth* cloth, const drape_pin* pins, uint32_t count);
+/** Releases pins: the vertices get back the inverse mass they had before pinning. */
+DRAPE_API drape_status drape_cloth_release_pins(drape_cloth* cloth, const uint32_t* vertices, uint32_t count);
+/** Teleports vertices (count*3 floats, caller order) and zeroes velocities. Rest lengths keep. */
+DRAPE_API drape_status drape_cloth_set_positions(drape_cloth* cloth, const float* positions, uint32_t count);
+/** Sets velocities (count*3 floats, caller order, m/s). */
+DRAPE_API drape_status drape_cloth_set_velocities(drape_cloth* cloth, const float* velocities, uint32_t count);
+
+/** Steps one cloth by dt seconds (0 < dt <= 1). DRAPE_ERROR_UNSTABLE: state rolled back. */
+DRAPE_API drape_status drape_cloth_step(drape_cloth* cloth, float dt);
+
+/** Writes positions and/or normals of every caller vertex into dst (dst_size bytes). */
+DRAPE_API drape_status drape_cloth_read(const drape_cloth* cloth, const drape_vertex_layout* layout,
+                                        void* dst, size_t dst_size);
+DRAPE_API drape_status drape_cloth_get_info(const drape_cloth* cloth, drape_cloth_info* out_info);
+DRAPE_API drape_status drape_cloth_get_stats(const drape_cloth* cloth, drape_stats* out_stats);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* DRAPE_DRAPE_H */

@@ -1,0 +1,195 @@
+// Per-particle kernels of one substep, each over a range [begin, end) of particles.
+//
+// Every kernel is a gather: particle i reads its own record and its neighbours' records from
+// input buffers and writes only its own record to an output buffer (Jacobi style, the paper's
+// per-vertex formulation). That is what a GLES vertex shader with transform feedback can do, so
+// shaders/ mirrors these functions line by line, and any split of the range over threads gives
+// the same bits.
+//
+// Records are 16 bytes: xyz position (m) + w inverse mass (1/kg; 0 = pinned/kinematic).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "core/params.h"
+#include "core/topology.h"
+
+namespace drape::kernels {
+
+using Particle = glm::vec4;
+
+/// Per-substep constants for each spring group. Derived from drape_params and h.
+struct GroupConstants {
+    float stiffness[DRAPE_GROUP_COUNT];   ///< MASS_SPRING: k, N/m. PBD: fraction per iteration
+    float compliance[DRAPE_GROUP_COUNT];  ///< XPBD: alpha~ = 1/(k h^2); 0 when k is 0 (group off)
+    float damping_ratio[DRAPE_GROUP_COUNT]; ///< XPBD: gamma = alpha~ * (h^2 kd) / h = kd/(k h)
+    bool active[DRAPE_GROUP_COUNT];       ///< stiffness > 0
+};
+
+/// Everything a substep needs, as plain pointers (no ownership).
+struct SubstepContext {
+    const uint32_t* nbr_index;
+    const float* nbr_rest;
+    const uint8_t* nbr_group;
+    const uint32_t* nbr_count;
+    const uint32_t* active_count;  ///< active springs per particle (Jacobi row sums)
+    uint32_t slots;
+    float* lambda;                 ///< XPBD multipliers, one per slot (both ends keep equal copies)
+    GroupConstants groups;
+    glm::vec3 gravity, wind;
+    float air_drag;
+    float damping;                 ///< kd, N*s/m
+    float h;                       ///< substep, s
+    float h_prev;                  ///< previous substep, s (velocity = (x - prev)/h_prev)
+    float accel_h;                 ///< (h + h_prev_for_accel)/2: h, or h/2 on the first step
+};
+
+inline bool active_slot(const SubstepContext& c, size_t slot) {
+    uint8_t g = c.nbr_group[slot];
+    return g < DRAPE_GROUP_COUNT && c.groups.active[g];
+}
+
+/// Unit vector and length of d; zero vector for a zero-length spring (no direction, no force).
+inline glm::vec3 direction(const glm::vec3& d, float* len) {
+    *len = std::sqrt(glm::dot(d, d));
+    return *len > 0 ? d * (1.0f / *len) : glm::vec3(0.0f);
+}
+
+/// External acceleration: gravity plus linear air drag towards the wind velocity.
+inline glm::vec3 external_accel(const SubstepContext& c, const glm::vec3& v) {
+    return c.gravity + c.air_drag * (c.wind - v);
+}
+
+/// MASS_SPRING (paper eq. 1-3): Hooke force plus a dashpot along each spring, then a Verlet step
+/// x' = x + v h + a h (h + h_prev)/2 with v = (x - prev)/h_prev (variable-step Verlet; exact for
+/// constant acceleration when the first step uses h/2, see accuracy.md R1).
+inline void mass_spring_step(const SubstepContext& c, const Particle* cur, const Particle* prev, Particle* out,
+                             uint32_t begin, uint32_t end) {
+    const float inv_hp = 1.0f / c.h_prev;
+    for (uint32_t i = begin; i < end; ++i) {
+        const glm::vec3 xi(cur[i]);
+        const float wi = cur[i].w;
+        if (wi == 0.0f) {
+            out[i] = cur[i];
+            continue;
+        }
+        const glm::vec3 vi = (xi - glm::vec3(prev[i])) * inv_hp;
+        glm::vec3 force(0.0f);
+        const size_t row = size_t(i) * c.slots;
+        for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
+            const size_t slot = row + s;
+            if (!active_slot(c, slot)) continue;
+            const uint32_t j = c.nbr_index[slot];
+            const glm::vec3 xj(cur[j]);
+            const glm::vec3 vj = (xj - glm::vec3(prev[j])) * inv_hp;
+            float len;
+            const glm::vec3 n = direction(xi - xj, &len);
+            const float k = c.groups.stiffness[c.nbr_group[slot]];
+            force += (-k * (len - c.nbr_rest[slot]) - c.damping * glm::dot(vi - vj, n)) * n;
+        }
+        const glm::vec3 a = wi * force + external_accel(c, vi);
+        out[i] = Particle(xi + vi * c.h + a * (c.h * c.accel_h), wi);
+    }
+}
+
+/// PBD / XPBD prediction: inertial step under external forces, multipliers reset.
+/// kDashpot (PBD, which has no compliance to carry damping): explicit dashpots along the springs,
+/// kd limited per spring to 1/(h (wi ci + wj cj)) so the explicit update cannot overshoot.
+template <bool kDashpot>
+inline void predict(const SubstepContext& c, const Particle* cur, const Particle* prev, Particle* out,
+                    uint32_t begin, uint32_t end) {
+    const float inv_hp = 1.0f / c.h_prev;
+    for (uint32_t i = begin; i < end; ++i) {
+        const float wi = cur[i].w;
+        const glm::vec3 xi(cur[i]);
+        glm::vec3 x = xi;
+        if (wi != 0.0f) {
+            const glm::vec3 vi = (xi - glm::vec3(prev[i])) * inv_hp;
+            glm::vec3 a = external_accel(c, vi);
+            if (kDashpot) {
+                glm::vec3 force(0.0f);
+                const size_t row = size_t(i) * c.slots;
+                for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
+                    const size_t slot = row + s;
+                    if (!active_slot(c, slot)) continue;
+                    const uint32_t j = c.nbr_index[slot];
+                    const glm::vec3 xj(cur[j]);
+                    const glm::vec3 vj = (xj - glm::vec3(prev[j])) * inv_hp;
+                    float len;
+                    const glm::vec3 n = direction(xi - xj, &len);
+                    const float limit = 1.0f / (c.h * (wi * float(c.active_count[i]) +
+                                                       cur[j].w * float(c.active_count[j])));
+                    force -= std::fmin(c.damping, limit) * glm::dot(vi - vj, n) * n;
+                }
+                a += wi * force;
+            }
+            x = xi + vi * c.h + a * (c.h * c.accel_h);
+        }
+        out[i] = Particle(x, wi);
+        if (c.lambda)
+            for (uint32_t s = 0; s < c.slots; ++s) c.lambda[size_t(i) * c.slots + s] = 0.0f;
+    }
+}
+
+/// Jacobi scaling of one constraint's update: 1 / (1 + theta R), R = the constraint's off-diagonal
+/// row sum over its diagonal in J W J^T + alpha~ (with |cos| <= 1, so it holds in any pose).
+/// An uncoupled constraint gets the full update; for theta > 1/2 the scaled Jacobi iteration
+/// converges (2P - A is diagonally dominant).
+inline float jacobi_scale(float wi, float wj, uint32_t ci, uint32_t cj, float diag, float gamma_factor) {
+    const float off = gamma_factor * (wi * float(ci - 1) + wj * float(cj - 1));
+    return 1.0f / (1.0f + kJacobiCoupling * off / diag);
+}
+
+/// One PBD (paper eq. 7-8, stiffness k per iteration) or XPBD (Macklin 2016 eq. 18 with the
+/// damping term of eq. 26) Jacobi iteration. Reads the iterate `cur` and the substep start
+/// `start`; writes `out`. Symmetric in i and j so both copies of each lambda stay equal.
+template <bool kXpbd>
+inline void constraint_iteration(const SubstepContext& c, const Particle* cur, const Particle* start, Particle* out,
+                                 uint32_t begin, uint32_t end) {
+    for (uint32_t i = begin; i < end; ++i) {
+        const float wi = cur[i].w;
+        if (wi == 0.0f) {
+            out[i] = cur[i];
+            continue;
+        }
+        const glm::vec3 xi(cur[i]);
+        const glm::vec3 ui = xi - glm::vec3(start[i]);  // displacement this substep (damping)
+        const uint32_t ci = c.active_count[i];
+        glm::vec3 dx(0.0f);
+        const size_t row = size_t(i) * c.slots;
+        for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
+            const size_t slot = row + s;
+            if (!active_slot(c, slot)) continue;
+            const uint32_t j = c.nbr_index[slot];
+            const uint8_t g = c.nbr_group[slot];
+            const float wj = cur[j].w;
+            const glm::vec3 xj(cur[j]);
+            float len;
+            const glm::vec3 n = direction(xi - xj, &len);
+            const float constraint = len - c.nbr_rest[slot];
+            const float wsum = wi + wj;
+            float dl;
+            if (kXpbd) {
+                const float alpha = c.groups.compliance[g];
+                const float gamma = c.groups.damping_ratio[g];
+                const float diag = (1.0f + gamma) * wsum + alpha;
+                const float damp = gamma * glm::dot(n, ui - (xj - glm::vec3(start[j])));
+                dl = (-constraint - alpha * c.lambda[slot] - damp) / diag;
+                dl *= jacobi_scale(wi, wj, ci, c.active_count[j], diag, 1.0f + gamma);
+                c.lambda[slot] += dl;
+            } else {
+                dl = -constraint / wsum * c.groups.stiffness[g];
+                dl *= jacobi_scale(wi, wj, ci, c.active_count[j], wsum, 1.0f);
+            }
+            dx += (wi * dl) * n;
+        }
+        out[i] = Particle(xi + dx, wi);
+    }
+}
+
+}  // namespace drape::kernels

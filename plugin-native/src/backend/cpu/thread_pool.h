@@ -1,0 +1,68 @@
+// Persistent worker pool for CPU_THREADED. Workers spin briefly between the many short passes
+// of a step (a step is tens of barriers), then sleep on a condition variable when idle, so an
+// idle world costs no CPU. The paper woke four workers through a mutex per step; here a pass
+// costs one atomic increment to start and one to finish.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace drape {
+
+class ThreadPool {
+public:
+    /// threads: total including the calling thread (>= 1).
+    explicit ThreadPool(uint32_t threads);
+    ~ThreadPool();
+    ThreadPool(const ThreadPool&) = delete;
+    ThreadPool& operator=(const ThreadPool&) = delete;
+
+    uint32_t size() const { return uint32_t(workers_.size()) + 1; }
+
+    /// Runs fn(begin, end) over [0, count) split into size() contiguous ranges, one per thread;
+    /// returns when all are done. The split depends only on count and size().
+    template <class Fn>
+    void parallel_for(uint32_t count, Fn&& fn) {
+        const uint32_t n = size();
+        if (n == 1 || count < 2 * n) {
+            fn(0u, count);
+            return;
+        }
+        auto job = [&](uint32_t t) {
+            uint64_t b = uint64_t(count) * t / n, e = uint64_t(count) * (t + 1) / n;
+            fn(uint32_t(b), uint32_t(e));
+        };
+        run(&invoke<decltype(job)>, &job);
+    }
+
+    /// Runs fn(thread_index) once on every thread (0 = caller).
+    template <class Fn>
+    void run_on_all(Fn&& fn) {
+        run(&invoke<Fn>, &fn);
+    }
+
+private:
+    using JobFn = void (*)(void*, uint32_t);
+    template <class F>
+    static void invoke(void* f, uint32_t t) {
+        (*static_cast<F*>(f))(t);
+    }
+    void run(JobFn fn, void* ctx);
+    void worker_main(uint32_t index);
+
+    std::vector<std::thread> workers_;
+    JobFn job_ = nullptr;
+    void* job_ctx_ = nullptr;
+    std::atomic<uint32_t> generation_{0};
+    std::atomic<uint32_t> pending_{0};
+    std::atomic<uint32_t> sleepers_{0};
+    std::atomic<bool> stop_{false};
+    std::mutex mutex_;
+    std::condition_variable wake_;
+};
+
+}  // namespace drape

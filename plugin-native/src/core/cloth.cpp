@@ -1,0 +1,382 @@
+#include "core/cloth.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include <glm/geometric.hpp>
+
+#include "backend/cpu/kernels.h"
+
+namespace drape {
+
+Cloth::Cloth(World& world, drape_backend backend, Topology topology)
+    : world_(world), backend_(backend), topo_(std::move(topology)), params_(default_params()) {
+    const uint32_t n = topo_.particle_count;
+    base_inverse_mass_.resize(n);
+    for (uint32_t i = 0; i < n; ++i) base_inverse_mass_[i] = 1.0f / topo_.mass[i];
+    pinned_.assign(n, 0);
+    kinematic_target_.assign(topo_.rest_position.begin(), topo_.rest_position.end());
+    for (auto& b : buffers_) b.resize(n);
+    for (uint32_t i = 0; i < n; ++i) buffers_[cur_][i] = buffers_[prev_][i] = Particle(topo_.rest_position[i], 0.0f);
+    lambda_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
+    active_count_.resize(n);
+    kinematic_.reserve(n);
+    kinematic_start_.resize(n);
+    backup_cur_.resize(n);
+    backup_prev_.resize(n);
+    partials_.resize(world.pool().size());
+    normals_.resize(n);
+    stats_.struct_size = sizeof(drape_stats);
+    refresh_derived();
+}
+
+void Cloth::refresh_derived() {
+    const uint32_t n = topo_.particle_count;
+    const NeighbourTable& nb = topo_.nbr;
+    // Effective inverse masses into the state; list the kinematic particles.
+    kinematic_.clear();
+    for (uint32_t i = 0; i < n; ++i) {
+        float w = pinned_[i] ? 0.0f : base_inverse_mass_[i];
+        buffers_[cur_][i].w = buffers_[prev_][i].w = w;
+        if (w == 0.0f) kinematic_.push_back(i);
+    }
+    // Active springs per particle, and the explicit stability bound (accuracy.md, "cruder"
+    // form, valid in any pose): w^2 <= 2 w_i sum_j k_ij; with the dashpots' c = 2 w_i sum kd,
+    // Verlet needs h^2 w^2 + 2 h c <= 4 (times a safety factor).
+    float h_max = INFINITY;
+    for (uint32_t i = 0; i < n; ++i) {
+        uint32_t active = 0;
+        float ksum = 0;
+        for (uint32_t s = 0; s < nb.count[i]; ++s) {
+            uint8_t g = nb.group[size_t(i) * nb.slots + s];
+            if (params_.stiffness[g] > 0) {
+                ++active;
+                ksum += params_.stiffness[g];
+            }
+        }
+        active_count_[i] = active;
+        const float w = buffers_[cur_][i].w;
+        if (w == 0 || active == 0) continue;
+        const float a = 2.0f * w * ksum;
+        const float b = 2.0f * w * params_.damping * float(active);
+        const float s = kStabilitySafety;
+        const float h = a > 0 ? (-b + std::sqrt(b * b + 4.0f * s * s * a)) / a : 2.0f * s * s / std::max(b, 1e-30f);
+        h_max = std::min(h_max, h);
+    }
+    ms_h_max_ = h_max;
+}
+
+void Cloth::set_params(const drape_params& p) {
+    params_ = p;
+    refresh_derived();
+}
+
+void Cloth::set_inverse_masses(const float* inverse_masses) {
+    const uint32_t n = topo_.particle_count;
+    std::vector<float> w(n, INFINITY);
+    for (uint32_t v = 0; v < topo_.vertex_count; ++v) {
+        float& slot = w[topo_.vertex_to_particle[v]];
+        slot = std::min(slot, inverse_masses[v]);
+    }
+    for (uint32_t i = 0; i < n; ++i) {
+        if (w[i] == 0.0f && base_inverse_mass_[i] != 0.0f && !pinned_[i])
+            kinematic_target_[i] = glm::vec3(buffers_[cur_][i]);  // held where it is
+        base_inverse_mass_[i] = w[i];
+    }
+    refresh_derived();
+}
+
+void Cloth::set_pins(const drape_pin* pins, uint32_t count) {
+    for (uint32_t k = 0; k < count; ++k) {
+        const uint32_t i = topo_.vertex_to_particle[pins[k].vertex];
+        pinned_[i] = 1;
+        kinematic_target_[i] = glm::vec3(pins[k].position[0], pins[k].position[1], pins[k].position[2]);
+    }
+    refresh_derived();
+}
+
+void Cloth::release_pins(const uint32_t* vertices, uint32_t count) {
+    for (uint32_t k = 0; k < count; ++k) {
+        const uint32_t i = topo_.vertex_to_particle[vertices[k]];
+        pinned_[i] = 0;
+        kinematic_target_[i] = glm::vec3(buffers_[cur_][i]);
+    }
+    refresh_derived();
+}
+
+void Cloth::set_positions(const float* xyz) {
+    for (uint32_t v = 0; v < topo_.vertex_count; ++v) {
+        const uint32_t i = topo_.vertex_to_particle[v];
+        const glm::vec3 p(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+        buffers_[cur_][i] = buffers_[prev_][i] = Particle(p, buffers_[cur_][i].w);
+        if (buffers_[cur_][i].w == 0.0f) kinematic_target_[i] = p;
+    }
+    fresh_ = true;
+}
+
+void Cloth::set_velocities(const float* xyz) {
+    for (uint32_t v = 0; v < topo_.vertex_count; ++v) {
+        const uint32_t i = topo_.vertex_to_particle[v];
+        if (buffers_[cur_][i].w == 0.0f) continue;  // kinematic particles follow their targets
+        const glm::vec3 vel(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+        buffers_[prev_][i] = Particle(glm::vec3(buffers_[cur_][i]) - vel * h_prev_, buffers_[cur_][i].w);
+    }
+    fresh_ = true;
+}
+
+uint32_t Cloth::substeps_for(float dt) const {
+    if (params_.substeps > 0) return params_.substeps;
+    if (params_.model != DRAPE_MODEL_MASS_SPRING) return kAutoSubstepsPositionBased;
+    float s = std::ceil(dt / ms_h_max_);
+    return s < 1 ? 1u : s > float(kMaxSubsteps) ? kMaxSubsteps : uint32_t(s);
+}
+
+template <class Fn>
+void Cloth::for_particles(Fn&& fn) {
+    if (backend_ == DRAPE_BACKEND_CPU_THREADED)
+        world_.pool().parallel_for(topo_.particle_count, fn);
+    else
+        fn(0u, topo_.particle_count);
+}
+
+Result Cloth::step(float dt) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const uint32_t n = topo_.particle_count;
+    const NeighbourTable& nb = topo_.nbr;
+    const uint32_t substeps = substeps_for(dt);
+    const float h = dt / float(substeps);
+    const drape_model model = drape_model(params_.model);
+
+    std::memcpy(backup_cur_.data(), buffers_[cur_].data(), n * sizeof(Particle));
+    std::memcpy(backup_prev_.data(), buffers_[prev_].data(), n * sizeof(Particle));
+    const float backup_h_prev = h_prev_;
+    const bool backup_fresh = fresh_;
+    for (uint32_t k : kinematic_) kinematic_start_[k] = glm::vec3(buffers_[cur_][k]);
+
+    kernels::SubstepContext c{};
+    c.nbr_index = nb.index.data();
+    c.nbr_rest = nb.rest.data();
+    c.nbr_group = nb.group.data();
+    c.nbr_count = nb.count.data();
+    c.active_count = active_count_.data();
+    c.slots = nb.slots;
+    c.lambda = model == DRAPE_MODEL_XPBD ? lambda_.data() : nullptr;
+    for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) {
+        const float k = params_.stiffness[g];
+        c.groups.stiffness[g] = k;
+        c.groups.active[g] = k > 0;
+        c.groups.compliance[g] = k > 0 ? 1.0f / (k * h * h) : 0.0f;
+        c.groups.damping_ratio[g] = k > 0 ? params_.damping / (k * h) : 0.0f;
+    }
+    c.gravity = glm::vec3(params_.gravity[0], params_.gravity[1], params_.gravity[2]);
+    c.wind = glm::vec3(params_.wind[0], params_.wind[1], params_.wind[2]);
+    c.air_drag = params_.air_drag;
+    c.damping = params_.damping;
+    c.h = h;
+
+    for (uint32_t sub = 0; sub < substeps; ++sub) {
+        c.h_prev = h_prev_;
+        c.accel_h = fresh_ ? 0.5f * h : 0.5f * (h + h_prev_);
+        Particle* cur = buffers_[cur_].data();
+        Particle* prev = buffers_[prev_].data();
+        Particle* spare = buffers_[spare_].data();
+        // Kinematic particles move along a straight line from their start to their target.
+        const float along = float(sub + 1) / float(substeps);
+        auto place_kinematic = [&](Particle* x) {
+            for (uint32_t k : kinematic_)
+                x[k] = Particle(kinematic_start_[k] + (kinematic_target_[k] - kinematic_start_[k]) * along, 0.0f);
+        };
+        if (model == DRAPE_MODEL_MASS_SPRING) {
+            for_particles([&](uint32_t b, uint32_t e) { kernels::mass_spring_step(c, cur, prev, spare, b, e); });
+            place_kinematic(spare);
+            std::swap(prev_, cur_);   // prev <- cur
+            std::swap(cur_, spare_);  // cur <- new, spare <- old prev
+        } else {
+            // predict: start(cur) -> spare; iterate spare <-> prev (free after predict).
+            if (model == DRAPE_MODEL_PBD && params_.damping > 0)
+                for_particles([&](uint32_t b, uint32_t e) { kernels::predict<true>(c, cur, prev, spare, b, e); });
+            else
+                for_particles([&](uint32_t b, uint32_t e) { kernels::predict<false>(c, cur, prev, spare, b, e); });
+            place_kinematic(spare);
+            Particle* in = spare;
+            Particle* out = prev;
+            for (uint32_t it = 0; it < params_.iterations; ++it) {
+                if (model == DRAPE_MODEL_XPBD)
+                    for_particles([&](uint32_t b, uint32_t e) {
+                        kernels::constraint_iteration<true>(c, in, cur, out, b, e);
+                    });
+                else
+                    for_particles([&](uint32_t b, uint32_t e) {
+                        kernels::constraint_iteration<false>(c, in, cur, out, b, e);
+                    });
+                std::swap(in, out);
+            }
+            // `in` holds the result; `cur` becomes prev; the third buffer is spare.
+            const int result = in == spare ? spare_ : prev_;
+            const int other = in == spare ? prev_ : spare_;
+            prev_ = cur_;
+            cur_ = result;
+            spare_ = other;
+        }
+        h_prev_ = h;
+        fresh_ = false;
+    }
+
+    // Verify: finite positions and no runaway strain; strain statistics on the way.
+    const Particle* x = buffers_[cur_].data();
+    auto verify = [&](uint32_t t, uint32_t b, uint32_t e) {
+        VerifyPartial p{true, 0, 0, 0, 0};
+        for (uint32_t i = b; i < e; ++i) {
+            if (!(std::isfinite(x[i].x) && std::isfinite(x[i].y) && std::isfinite(x[i].z))) p.finite = false;
+            const size_t row = size_t(i) * nb.slots;
+            for (uint32_t s = 0; s < nb.count[i]; ++s) {
+                const uint32_t j = nb.index[row + s];
+                const uint8_t g = nb.group[row + s];
+                if (j < i || !(params_.stiffness[g] > 0) || !(nb.rest[row + s] > 0)) continue;
+                const float strain = glm::length(glm::vec3(x[i]) - glm::vec3(x[j])) / nb.rest[row + s] - 1.0f;
+                const float a = std::fabs(strain);
+                if (!(a <= p.max_strain_all)) p.max_strain_all = a;  // also catches NaN
+                if (g != DRAPE_GROUP_BEND) {
+                    p.max_strain = std::max(p.max_strain, a);
+                    p.sum_sq += strain * strain;
+                    ++p.count;
+                }
+            }
+        }
+        partials_[t] = p;
+    };
+    const uint32_t parts = backend_ == DRAPE_BACKEND_CPU_THREADED ? world_.pool().size() : 1;
+    if (parts == 1) {
+        verify(0, 0, n);
+    } else {
+        world_.pool().run_on_all([&](uint32_t t) {
+            verify(t, uint32_t(uint64_t(n) * t / parts), uint32_t(uint64_t(n) * (t + 1) / parts));
+        });
+    }
+    VerifyPartial total{true, 0, 0, 0, 0};
+    for (uint32_t t = 0; t < parts; ++t) {
+        total.finite = total.finite && partials_[t].finite;
+        if (!(partials_[t].max_strain_all <= total.max_strain_all)) total.max_strain_all = partials_[t].max_strain_all;
+        total.max_strain = std::max(total.max_strain, partials_[t].max_strain);
+        total.sum_sq += partials_[t].sum_sq;
+        total.count += partials_[t].count;
+    }
+
+    stats_.substeps = substeps;
+    stats_.iterations = model == DRAPE_MODEL_MASS_SPRING ? 1 : params_.iterations;
+    stats_.step_ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const bool runaway = !(total.max_strain_all <= kRunawayStrain);
+    stats_.non_finite = total.finite ? 0 : 1;
+    if (!total.finite || runaway) {
+        std::memcpy(buffers_[cur_].data(), backup_cur_.data(), n * sizeof(Particle));
+        std::memcpy(buffers_[prev_].data(), backup_prev_.data(), n * sizeof(Particle));
+        h_prev_ = backup_h_prev;
+        fresh_ = backup_fresh;
+        for (uint32_t k : kinematic_) kinematic_target_[k] = glm::vec3(buffers_[cur_][k]);
+        ++stats_.unstable_steps;
+        return {DRAPE_ERROR_UNSTABLE,
+                std::string("step diverged (") + (total.finite ? "runaway strain" : "non-finite positions") +
+                    " with " + std::to_string(substeps) + " substeps of " + std::to_string(h) +
+                    " s); the state before the step was restored. Raise substeps or lower stiffness."};
+    }
+    stats_.max_strain = total.max_strain;
+    stats_.rms_strain = total.count ? std::sqrt(total.sum_sq / float(total.count)) : 0.0f;
+    return {};
+}
+
+void Cloth::read(const drape_vertex_layout& layout, void* dst) const {
+    const uint32_t n = topo_.particle_count;
+    const Particle* x = buffers_[cur_].data();
+    auto* bytes = static_cast<uint8_t*>(dst);
+    if (layout.normal_offset >= 0) {
+        // Area-weighted vertex normals: sum of unnormalised face normals.
+        std::fill(normals_.begin(), normals_.end(), glm::vec3(0.0f));
+        const auto& tri = topo_.triangles;
+        for (size_t k = 0; k + 2 < tri.size(); k += 3) {
+            const glm::vec3 p0(x[tri[k]]), p1(x[tri[k + 1]]), p2(x[tri[k + 2]]);
+            const glm::vec3 fn = glm::cross(p1 - p0, p2 - p0);
+            normals_[tri[k]] += fn;
+            normals_[tri[k + 1]] += fn;
+            normals_[tri[k + 2]] += fn;
+        }
+        for (uint32_t i = 0; i < n; ++i) {
+            const float len = glm::length(normals_[i]);
+            normals_[i] = len > 0 ? normals_[i] / len : glm::vec3(0, 1, 0);
+        }
+    }
+    for (uint32_t v = 0; v < topo_.vertex_count; ++v) {
+        const uint32_t i = topo_.vertex_to_particle[v];
+        uint8_t* rec = bytes + size_t(v) * layout.stride;
+        if (layout.position_offset >= 0) std::memcpy(rec + layout.position_offset, &x[i], 12);
+        if (layout.normal_offset >= 0) std::memcpy(rec + layout.normal_offset, &normals_[i], 12);
+    }
+}
+
+void Cloth::stats(drape_stats* out) const {
+    drape_stats s = stats_;
+    // Energies from the current state (computed on demand: a step does not pay for them).
+    const Particle* x = buffers_[cur_].data();
+    const Particle* p = buffers_[prev_].data();
+    const NeighbourTable& nb = topo_.nbr;
+    const glm::vec3 g(params_.gravity[0], params_.gravity[1], params_.gravity[2]);
+    double kinetic = 0, potential = 0, elastic = 0;
+    for (uint32_t i = 0; i < topo_.particle_count; ++i) {
+        const float w = x[i].w;
+        if (w > 0) {
+            const glm::vec3 v = (glm::vec3(x[i]) - glm::vec3(p[i])) / h_prev_;
+            kinetic += 0.5 * double(glm::dot(v, v)) / w;
+            potential -= double(glm::dot(g, glm::vec3(x[i]))) / w;
+        }
+        if (params_.model == DRAPE_MODEL_PBD) continue;
+        const size_t row = size_t(i) * nb.slots;
+        for (uint32_t k = 0; k < nb.count[i]; ++k) {
+            const uint32_t j = nb.index[row + k];
+            if (j < i) continue;
+            const double stretch = glm::length(glm::vec3(x[i]) - glm::vec3(x[j])) - nb.rest[row + k];
+            elastic += 0.5 * params_.stiffness[nb.group[row + k]] * stretch * stretch;
+        }
+    }
+    if (fresh_) kinetic = 0;  // no step yet: prev holds the set velocity scaled by an unused h
+    s.kinetic_energy = float(kinetic);
+    s.potential_energy = float(potential);
+    s.elastic_energy = float(elastic);
+    *out = s;
+}
+
+World::World(uint32_t threads) : pool_(threads) {}
+
+World::~World() {
+    for (Cloth* c : std::vector<Cloth*>(cloths_)) delete c;
+}
+
+void World::remove(Cloth* c) { cloths_.erase(std::find(cloths_.begin(), cloths_.end(), c)); }
+
+Result World::step(float dt) {
+    // Single-threaded cloths are spread over the pool (one cloth is never split, so each stays
+    // deterministic); threaded cloths then use the whole pool one after another. The lists keep
+    // their capacity, so steady-state steps do not allocate.
+    const uint32_t threads = pool_.size();
+    serial_.clear();
+    threaded_.clear();
+    for (Cloth* c : cloths_) (c->backend() == DRAPE_BACKEND_CPU_THREADED ? threaded_ : serial_).push_back(c);
+    results_.resize(serial_.size());
+    if (threads > 1 && serial_.size() > 1) {
+        pool_.run_on_all([&](uint32_t t) {
+            for (size_t k = t; k < serial_.size(); k += threads) results_[k] = serial_[k]->step(dt);
+        });
+    } else {
+        for (size_t k = 0; k < serial_.size(); ++k) results_[k] = serial_[k]->step(dt);
+    }
+    Result first;
+    for (const Result& r : results_)
+        if (!r.ok() && first.ok()) first = r;
+    for (Cloth* c : threaded_) {
+        Result r = c->step(dt);
+        if (!r.ok() && first.ok()) first = r;
+    }
+    return first;
+}
+
+}  // namespace drape

@@ -1,0 +1,118 @@
+// A cloth: cooked topology + parameters + run-time state, and the world that owns cloths and the
+// worker pool. The C ABI (src/api) validates every input before it reaches these classes.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "backend/cpu/thread_pool.h"
+#include "core/params.h"
+#include "core/topology.h"
+#include "drape/drape.h"
+
+namespace drape {
+
+class World;
+
+/// Outcome of an operation: status plus message (messages travel back to the calling thread).
+struct Result {
+    drape_status status = DRAPE_OK;
+    std::string message;
+    bool ok() const { return status == DRAPE_OK; }
+};
+
+class Cloth {
+public:
+    Cloth(World& world, drape_backend backend, Topology topology);
+    virtual ~Cloth() = default;
+
+    World& world() const { return world_; }
+    drape_backend backend() const { return backend_; }
+    const Topology& topology() const { return topo_; }
+    const drape_params& params() const { return params_; }
+
+    void set_params(const drape_params& p);
+    /// Per caller vertex; welded copies take the smallest value.
+    void set_inverse_masses(const float* inverse_masses);
+    void set_pins(const drape_pin* pins, uint32_t count);
+    void release_pins(const uint32_t* vertices, uint32_t count);
+    void set_positions(const float* xyz);
+    void set_velocities(const float* xyz);
+
+    /// Steps by dt; on divergence restores the state from before the step.
+    Result step(float dt);
+
+    /// Writes positions/normals per caller vertex. Layout and size already validated.
+    void read(const drape_vertex_layout& layout, void* dst) const;
+    void stats(drape_stats* out) const;
+
+    /// Substeps a step of dt uses with the current parameters.
+    uint32_t substeps_for(float dt) const;
+    /// MASS_SPRING: largest stable substep from the explicit bound (accuracy.md), s.
+    float stable_substep() const { return ms_h_max_; }
+
+protected:
+    using Particle = glm::vec4;
+
+    void refresh_derived();  // after params or masses change
+    template <class Fn>
+    void for_particles(Fn&& fn);
+
+    World& world_;
+    const drape_backend backend_;
+    const Topology topo_;
+    drape_params params_;
+
+    // Run-time state: three particle buffers whose roles rotate (current, previous, spare).
+    std::vector<Particle> buffers_[3];
+    int cur_ = 0, prev_ = 1, spare_ = 2;
+    float h_prev_ = 1.0f;   ///< previous substep; velocity = (cur - prev)/h_prev
+    bool fresh_ = true;     ///< next substep is the first since positions/velocities were set
+    std::vector<float> lambda_;
+
+    // Masses and pins.
+    std::vector<float> base_inverse_mass_;   ///< per particle, before pinning
+    std::vector<uint8_t> pinned_;            ///< explicit pin (drape_cloth_set_pins)
+    std::vector<glm::vec3> kinematic_target_;///< where a particle with w = 0 goes this step
+    std::vector<uint32_t> kinematic_;        ///< particles with w = 0
+    std::vector<glm::vec3> kinematic_start_; ///< their positions at the start of the step
+
+    // Derived from params + masses.
+    std::vector<uint32_t> active_count_;
+    float ms_h_max_ = 0;
+
+    // Rollback copy and per-thread verify partials (allocated once).
+    std::vector<Particle> backup_cur_, backup_prev_;
+    struct VerifyPartial {
+        bool finite;
+        float max_strain_all, max_strain, sum_sq;
+        uint32_t count;
+    };
+    std::vector<VerifyPartial> partials_;
+    mutable std::vector<glm::vec3> normals_;
+
+    drape_stats stats_{};
+};
+
+class World {
+public:
+    explicit World(uint32_t threads);
+    ~World();
+    ThreadPool& pool() { return pool_; }
+    void add(Cloth* c) { cloths_.push_back(c); }
+    void remove(Cloth* c);
+    const std::vector<Cloth*>& cloths() const { return cloths_; }
+    Result step(float dt);
+
+private:
+    ThreadPool pool_;
+    std::vector<Cloth*> cloths_;
+    std::vector<Cloth*> serial_, threaded_;  // per-step scratch, capacity kept
+    std::vector<Result> results_;
+};
+
+}  // namespace drape

@@ -1,0 +1,2 @@
+#include "drape_test_util.h"
+using namespace drape_test;
