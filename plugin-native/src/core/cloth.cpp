@@ -178,42 +178,43 @@ Result Cloth::step(float dt) {
 
     for (uint32_t sub = 0; sub < substeps; ++sub) {
         c.h_prev = h_prev_;
+        c.h_ratio = h / h_prev_;
         c.accel_h = fresh_ ? 0.5f * h : 0.5f * (h + h_prev_);
         Particle* cur = buffers_[cur_].data();
         Particle* prev = buffers_[prev_].data();
         Particle* spare = buffers_[spare_].data();
         // Kinematic particles move along a straight line from their start to their target.
         const float along = float(sub + 1) / float(substeps);
-        auto place_kinematic = [&](Particle* x) {
-            for (uint32_t k : kinematic_)
-                x[k] = Particle(kinematic_start_[k] + (kinematic_target_[k] - kinematic_start_[k]) * along, 0.0f);
+        auto kinematic_at = [&](uint32_t k) {
+            return kinematic_start_[k] + (kinematic_target_[k] - kinematic_start_[k]) * along;
         };
         if (model == DRAPE_MODEL_MASS_SPRING) {
             for_particles([&](uint32_t b, uint32_t e) { kernels::mass_spring_step(c, cur, prev, spare, b, e); });
-            place_kinematic(spare);
+            for (uint32_t k : kinematic_) spare[k] = Particle(kinematic_at(k), 0.0f);
             std::swap(prev_, cur_);   // prev <- cur
             std::swap(cur_, spare_);  // cur <- new, spare <- old prev
         } else {
-            // predict: start(cur) -> spare; iterate spare <-> prev (free after predict).
+            // predict: displacements into spare; iterate spare <-> prev (free after predict); the
+            // last iteration writes positions. cur stays the substep start and becomes prev.
             if (model == DRAPE_MODEL_PBD && params_.damping > 0)
                 for_particles([&](uint32_t b, uint32_t e) { kernels::predict<true>(c, cur, prev, spare, b, e); });
             else
                 for_particles([&](uint32_t b, uint32_t e) { kernels::predict<false>(c, cur, prev, spare, b, e); });
-            place_kinematic(spare);
+            for (uint32_t k : kinematic_) spare[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
             Particle* in = spare;
             Particle* out = prev;
+            const bool xpbd = model == DRAPE_MODEL_XPBD;
             for (uint32_t it = 0; it < params_.iterations; ++it) {
-                if (model == DRAPE_MODEL_XPBD)
-                    for_particles([&](uint32_t b, uint32_t e) {
-                        kernels::constraint_iteration<true>(c, in, cur, out, b, e);
-                    });
-                else
-                    for_particles([&](uint32_t b, uint32_t e) {
-                        kernels::constraint_iteration<false>(c, in, cur, out, b, e);
-                    });
+                const bool last = it + 1 == params_.iterations;
+                for_particles([&](uint32_t b, uint32_t e) {
+                    if (xpbd && last) kernels::constraint_iteration<true, true>(c, in, cur, out, b, e);
+                    else if (xpbd) kernels::constraint_iteration<true, false>(c, in, cur, out, b, e);
+                    else if (last) kernels::constraint_iteration<false, true>(c, in, cur, out, b, e);
+                    else kernels::constraint_iteration<false, false>(c, in, cur, out, b, e);
+                });
                 std::swap(in, out);
             }
-            // `in` holds the result; `cur` becomes prev; the third buffer is spare.
+            // `in` holds the new positions; `cur` becomes prev; the third buffer is spare.
             const int result = in == spare ? spare_ : prev_;
             const int other = in == spare ? prev_ : spare_;
             prev_ = cur_;

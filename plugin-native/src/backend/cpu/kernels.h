@@ -46,6 +46,8 @@ struct SubstepContext {
     float damping;                 ///< kd, N*s/m
     float h;                       ///< substep, s
     float h_prev;                  ///< previous substep, s (velocity = (x - prev)/h_prev)
+    float h_ratio;                 ///< h / h_prev: exactly 1 for equal substeps, so steady
+                                   ///< motion is not rescaled by a rounded 1/h each substep
     float accel_h;                 ///< (h + h_prev_for_accel)/2: h, or h/2 on the first step
 };
 
@@ -93,11 +95,15 @@ inline void mass_spring_step(const SubstepContext& c, const Particle* cur, const
             force += (-k * (len - c.nbr_rest[slot]) - c.damping * glm::dot(vi - vj, n)) * n;
         }
         const glm::vec3 a = wi * force + external_accel(c, vi);
-        out[i] = Particle(xi + vi * c.h + a * (c.h * c.accel_h), wi);
+        out[i] = Particle(xi + (xi - glm::vec3(prev[i])) * c.h_ratio + a * (c.h * c.accel_h), wi);
     }
 }
 
-/// PBD / XPBD prediction: inertial step under external forces, multipliers reset.
+/// PBD / XPBD prediction: the inertial displacement of this substep under external forces,
+/// d = v h + a h (h + h_prev)/2, written as a displacement record (xyz = d, w = inverse mass);
+/// multipliers reset. Position-based substeps work on displacements from the substep start, not
+/// on absolute positions: with many small substeps g h^2 is a few float ulps of a position of
+/// order 1 m, and rounding x + g h^2 would bias the equilibrium by about 1% (measured on R4).
 /// kDashpot (PBD, which has no compliance to carry damping): explicit dashpots along the springs,
 /// kd limited per spring to 1/(h (wi ci + wj cj)) so the explicit update cannot overshoot.
 template <bool kDashpot>
@@ -107,7 +113,7 @@ inline void predict(const SubstepContext& c, const Particle* cur, const Particle
     for (uint32_t i = begin; i < end; ++i) {
         const float wi = cur[i].w;
         const glm::vec3 xi(cur[i]);
-        glm::vec3 x = xi;
+        glm::vec3 d(0.0f);
         if (wi != 0.0f) {
             const glm::vec3 vi = (xi - glm::vec3(prev[i])) * inv_hp;
             glm::vec3 a = external_accel(c, vi);
@@ -128,9 +134,9 @@ inline void predict(const SubstepContext& c, const Particle* cur, const Particle
                 }
                 a += wi * force;
             }
-            x = xi + vi * c.h + a * (c.h * c.accel_h);
+            d = (xi - glm::vec3(prev[i])) * c.h_ratio + a * (c.h * c.accel_h);
         }
-        out[i] = Particle(x, wi);
+        out[i] = Particle(d, wi);
         if (c.lambda)
             for (uint32_t s = 0; s < c.slots; ++s) c.lambda[size_t(i) * c.slots + s] = 0.0f;
     }
@@ -146,49 +152,47 @@ inline float jacobi_scale(float wi, float wj, uint32_t ci, uint32_t cj, float di
 }
 
 /// One PBD (paper eq. 7-8, stiffness k per iteration) or XPBD (Macklin 2016 eq. 18 with the
-/// damping term of eq. 26) Jacobi iteration. Reads the iterate `cur` and the substep start
-/// `start`; writes `out`. Symmetric in i and j so both copies of each lambda stay equal.
-template <bool kXpbd>
-inline void constraint_iteration(const SubstepContext& c, const Particle* cur, const Particle* start, Particle* out,
+/// damping term of eq. 26) Jacobi iteration on displacements `disp` from the substep start
+/// `start`; writes displacements to `out`, or, with kCommit (the last iteration), the new
+/// positions start + displacement. Symmetric in i and j, so both copies of each lambda stay equal.
+template <bool kXpbd, bool kCommit>
+inline void constraint_iteration(const SubstepContext& c, const Particle* disp, const Particle* start, Particle* out,
                                  uint32_t begin, uint32_t end) {
     for (uint32_t i = begin; i < end; ++i) {
-        const float wi = cur[i].w;
-        if (wi == 0.0f) {
-            out[i] = cur[i];
-            continue;
-        }
-        const glm::vec3 xi(cur[i]);
-        const glm::vec3 ui = xi - glm::vec3(start[i]);  // displacement this substep (damping)
-        const uint32_t ci = c.active_count[i];
+        const float wi = disp[i].w;
+        const glm::vec3 di(disp[i]);
+        const glm::vec3 si(start[i]);
         glm::vec3 dx(0.0f);
-        const size_t row = size_t(i) * c.slots;
-        for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
-            const size_t slot = row + s;
-            if (!active_slot(c, slot)) continue;
-            const uint32_t j = c.nbr_index[slot];
-            const uint8_t g = c.nbr_group[slot];
-            const float wj = cur[j].w;
-            const glm::vec3 xj(cur[j]);
-            float len;
-            const glm::vec3 n = direction(xi - xj, &len);
-            const float constraint = len - c.nbr_rest[slot];
-            const float wsum = wi + wj;
-            float dl;
-            if (kXpbd) {
-                const float alpha = c.groups.compliance[g];
-                const float gamma = c.groups.damping_ratio[g];
-                const float diag = (1.0f + gamma) * wsum + alpha;
-                const float damp = gamma * glm::dot(n, ui - (xj - glm::vec3(start[j])));
-                dl = (-constraint - alpha * c.lambda[slot] - damp) / diag;
-                dl *= jacobi_scale(wi, wj, ci, c.active_count[j], diag, 1.0f + gamma);
-                c.lambda[slot] += dl;
-            } else {
-                dl = -constraint / wsum * c.groups.stiffness[g];
-                dl *= jacobi_scale(wi, wj, ci, c.active_count[j], wsum, 1.0f);
+        if (wi != 0.0f) {
+            const uint32_t ci = c.active_count[i];
+            const size_t row = size_t(i) * c.slots;
+            for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
+                const size_t slot = row + s;
+                if (!active_slot(c, slot)) continue;
+                const uint32_t j = c.nbr_index[slot];
+                const uint8_t g = c.nbr_group[slot];
+                const float wj = disp[j].w;
+                const glm::vec3 dij = di - glm::vec3(disp[j]);
+                float len;
+                const glm::vec3 n = direction((si - glm::vec3(start[j])) + dij, &len);
+                const float constraint = len - c.nbr_rest[slot];
+                const float wsum = wi + wj;
+                float dl;
+                if (kXpbd) {
+                    const float alpha = c.groups.compliance[g];
+                    const float gamma = c.groups.damping_ratio[g];
+                    const float diag = (1.0f + gamma) * wsum + alpha;
+                    dl = (-constraint - alpha * c.lambda[slot] - gamma * glm::dot(n, dij)) / diag;
+                    dl *= jacobi_scale(wi, wj, ci, c.active_count[j], diag, 1.0f + gamma);
+                    c.lambda[slot] += dl;
+                } else {
+                    dl = -constraint / wsum * c.groups.stiffness[g];
+                    dl *= jacobi_scale(wi, wj, ci, c.active_count[j], wsum, 1.0f);
+                }
+                dx += (wi * dl) * n;
             }
-            dx += (wi * dl) * n;
         }
-        out[i] = Particle(xi + dx, wi);
+        out[i] = kCommit ? Particle(si + (di + dx), wi) : Particle(di + dx, wi);
     }
 }
 
