@@ -1,0 +1,4 @@
+using System.Runtime.CompilerServices;
+
+// The Core tests (Unity Test Runner and tests/dotnet) call the raw bindings directly.
+[assembly: InternalsVisibleTo("Drape.Core.Tests")]

@@ -1,0 +1,101 @@
+// Every P/Invoke of Drape in one place. Keep in sync with plugin-native/include/drape/drape.h.
+// The library is "drape" (libdrape.so / drape.dll / libdrape.dylib) everywhere but on platforms
+// that link plug-ins statically (iOS, tvOS, WebGL), where it is "__Internal".
+using System;
+using System.Runtime.InteropServices;
+
+namespace Drape.Core
+{
+    internal static class NativeMethods
+    {
+#if (UNITY_IOS || UNITY_TVOS || UNITY_WEBGL) && !UNITY_EDITOR
+        internal const string Library = "__Internal";
+#else
+        internal const string Library = "drape";
+#endif
+        private const CallingConvention Cdecl = CallingConvention.Cdecl;
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern uint drape_abi_version();
+
+        /// <summary>const char*, thread-local, never NULL; read with <see cref="LastError"/>.</summary>
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern IntPtr drape_last_error();
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_backend_available(Backend backend, out uint available);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_params_default(out Params parameters);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_world_create(ref WorldDesc desc, out IntPtr world);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_world_destroy(IntPtr world);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_world_step(WorldHandle world, float dt);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_create_grid(WorldHandle world, ref ClothDesc desc, ref GridDesc grid,
+                                                              out IntPtr cloth);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_create_mesh(WorldHandle world, ref ClothDesc desc, ref MeshDesc mesh,
+                                                              out IntPtr cloth);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_destroy(IntPtr cloth);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_set_params(ClothHandle cloth, ref Params parameters);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_get_params(ClothHandle cloth, out Params parameters);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern unsafe Status drape_cloth_set_inverse_masses(ClothHandle cloth, float* inverseMasses,
+                                                                            uint count);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern unsafe Status drape_cloth_set_pins(ClothHandle cloth, Pin* pins, uint count);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern unsafe Status drape_cloth_release_pins(ClothHandle cloth, uint* vertices, uint count);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern unsafe Status drape_cloth_set_positions(ClothHandle cloth, float* positions, uint count);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern unsafe Status drape_cloth_set_velocities(ClothHandle cloth, float* velocities,
+                                                                        uint count);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_step(ClothHandle cloth, float dt);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern unsafe Status drape_cloth_read(ClothHandle cloth, ref VertexLayout layout, void* dst,
+                                                              UIntPtr dstSize);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_get_info(ClothHandle cloth, out ClothInfo info);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_get_stats(ClothHandle cloth, out Stats stats);
+
+        /// <summary>The native message for the last failure on this thread ("" if none).</summary>
+        internal static string LastError()
+        {
+            IntPtr p = drape_last_error();
+            return p == IntPtr.Zero ? string.Empty : Marshal.PtrToStringAnsi(p) ?? string.Empty;
+        }
+
+        /// <summary>Throws a <see cref="DrapeException"/> carrying drape_last_error() unless OK.
+        /// Call it right after the native call, on the same thread (the message is thread-local).</summary>
+        internal static void Check(Status status, string function)
+        {
+            if (status != Status.Ok) throw new DrapeException(status, function, LastError());
+        }
+    }
+}
