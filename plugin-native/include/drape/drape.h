@@ -123,7 +123,7 @@ typedef struct drape_params {
     uint32_t model;           /**< drape_model; default XPBD */
     float stiffness[3];       /**< per drape_group. MASS_SPRING, XPBD: N/m per spring (0 = group off);
                                    PBD: fraction in [0,1] per iteration. Default 2000, 1000, 200 */
-    float damping;            /**< N*s/m, along each spring (eq. 2; XPBD: constraint damping). Default 0.5 */
+    float damping;            /**< N*s/m, along each spring (eq. 2; XPBD: constraint damping). Default 0.05 */
     float gravity[3];         /**< m/s^2. Default (0,-9.81,0) */
     float wind[3];            /**< m/s, air velocity. Default 0 */
     float air_drag;           /**< 1/s, a += air_drag*(wind - v). Default 0.1 */
@@ -170,6 +170,9 @@ typedef struct drape_stats {
     float elastic_energy;     /**< J, springs (MASS_SPRING, XPBD); 0 for PBD */
     uint32_t non_finite;      /**< 1 if the last step produced NaN/Inf (and was rolled back) */
     uint32_t unstable_steps;  /**< steps rolled back since creation */
+    /* Added after ABI 1 shipped: drape_cloth_get_stats honours out_stats->struct_size, so callers
+     * built against the shorter struct (struct_size = offsetof(drape_stats, sleeping)) still work. */
+    uint32_t sleeping;        /**< 1 if the cloth is asleep (drape_sleep_desc): steps do no work */
 } drape_stats;
 
 DRAPE_API uint32_t drape_abi_version(void);
@@ -215,6 +218,161 @@ DRAPE_API drape_status drape_cloth_read(const drape_cloth* cloth, const drape_ve
                                         void* dst, size_t dst_size);
 DRAPE_API drape_status drape_cloth_get_info(const drape_cloth* cloth, drape_cloth_info* out_info);
 DRAPE_API drape_status drape_cloth_get_stats(const drape_cloth* cloth, drape_stats* out_stats);
+
+/* ---- GLES backend (DRAPE_BACKEND_GLES) -------------------------------------------------------
+ * A GLES cloth keeps its state in GL buffers of the context that was current when it was created.
+ * Immediate use (tests, samples, apps owning the context): create, step, read and destroy with
+ * that context current on the calling thread; without one, creation fails with
+ * DRAPE_ERROR_BACKEND_UNAVAILABLE and steps with DRAPE_ERROR_BACKEND_UNAVAILABLE.
+ * Unity (no context on the main thread, an OpenGLES3 device seen by UnityPluginLoad): calls on the
+ * main thread only record; the GL work (creation, queued steps and edits, output, releasing
+ * destroyed cloths) runs on the render thread when the event from drape_unity_render_event fires.
+ * Errors met there are returned by the cloth's next drape_cloth_step.
+ * Steps never read back. drape_cloth_read and drape_cloth_get_stats read the state back (immediate
+ * use only: with the context current) and then report what a CPU cloth would: positions, normals,
+ * energies, and max/rms strain and non_finite from that read-back state; step_ms is the time to
+ * record the GL commands; there is no divergence check or rollback on the GPU (unstable_steps
+ * stays 0). Setters that need the current positions (inverse masses, new pins, releasing pins,
+ * velocities) read back too. */
+
+/** Output target of a GLES cloth: after every step (and now) the GPU writes positions and/or
+ *  normals of every caller vertex into GL buffer `gl_buffer` (Unity: Mesh.GetNativeVertexBufferPtr)
+ *  at gl_buffer + i*stride + offset; bytes of the stride outside position/normal are kept.
+ *  The buffer must hold vertex_count*stride bytes (checked with glGetBufferParameteriv, also before
+ *  each step); stride <= 256. gl_buffer = 0 (layout may be NULL) stops writing. */
+DRAPE_API drape_status drape_cloth_set_output_buffer(drape_cloth* cloth, uint32_t gl_buffer,
+                                                     const drape_vertex_layout* layout);
+/** Copies the GPU state of a GLES cloth to its CPU copy (immediate: now; Unity: at the next render
+ *  event). Not needed for drape_cloth_read in immediate use. No-op for CPU cloths. */
+DRAPE_API drape_status drape_cloth_readback(drape_cloth* cloth);
+
+/* ---- Unity native plug-in interface (UnityPluginLoad/Unload are exported too) ---------------- */
+/** The render-event callback for GL.IssuePluginEvent / CommandBuffer.IssuePluginEvent and the
+ *  event id to pass (reserved from Unity). The event runs every GLES cloth's recorded GL work. */
+DRAPE_API drape_status drape_unity_render_event(void** out_callback, int32_t* out_event_id);
+
+/* ---- Colliders, sleeping, touch drag, owner transform (issue 5) -------------------------- */
+
+/* C# twin: Drape.Core.ColliderShape */
+typedef enum drape_collider_shape {
+    DRAPE_COLLIDER_SPHERE = 0,  /**< size[0] = radius (> 0) */
+    DRAPE_COLLIDER_CAPSULE = 1, /**< size[0] = radius (> 0), size[1] = half length (>= 0) of the
+                                     segment along local y between the cap centres (Unity:
+                                     max(0, height/2 - radius)) */
+    DRAPE_COLLIDER_BOX = 2,     /**< size = half extents (each > 0), oriented by rotation */
+    DRAPE_COLLIDER_PLANE = 3    /**< infinite; local +y (rotation applied to (0,1,0)) points to the
+                                     free side, position is a point on it; size ignored */
+} drape_collider_shape;
+
+/** Most colliders one cloth takes (drape_cloth_set_colliders). */
+#define DRAPE_MAX_COLLIDERS 64
+
+/* C# twin: Drape.Core.Collider. One element of the array given to drape_cloth_set_colliders. */
+typedef struct drape_collider {
+    uint32_t struct_size;
+    uint32_t shape;       /**< drape_collider_shape */
+    uint32_t id;          /**< host's stable id, unique in the array. The collider moves from the
+                               transform it had under the same id in the previous call to this one,
+                               interpolated across the next step's substeps (no tunnelling); a new
+                               id starts at rest */
+    float position[3];    /**< m, simulation space */
+    float rotation[4];    /**< unit quaternion x, y, z, w (|q| within 1e-3 of 1; renormalised) */
+    float size[3];        /**< m, see drape_collider_shape */
+    float margin;         /**< m, in [0, 10]: distance kept between the cloth and the surface
+                               (cloth thickness plus skin); typical 0.005 */
+    float friction;       /**< Coulomb coefficient in [0, 10]; 0 = frictionless. Typical 0.3-0.8 */
+} drape_collider;
+
+/** Replaces the cloth's colliders (call once per frame with the current transforms; count 0
+ *  removes them all). Nothing is checked against the cloth before the next step; with no
+ *  colliders, or none whose bounds touch the cloth's, the step does no collision work.
+ *  Errors: NULL_POINTER, STRUCT_SIZE (per element), INVALID_ENUM (shape), NOT_FINITE,
+ *  INVALID_ARGUMENT (count > DRAPE_MAX_COLLIDERS, sizes, margin, friction, duplicate id,
+ *  non-unit rotation). A change of any collider wakes a sleeping cloth. */
+DRAPE_API drape_status drape_cloth_set_colliders(drape_cloth* cloth, const drape_collider* colliders,
+                                                 uint32_t count);
+
+/* C# twin: Drape.Core.SleepDesc. A cloth whose fastest particle stays below `threshold` for
+ * `time` seconds of steps falls asleep: its velocities are zeroed and drape_cloth_step returns at
+ * once without touching the state. Colliders, pins, drag, grab, owner transform, parameters,
+ * masses, positions or velocities that change wake it. Default: threshold 0 (never sleeps). */
+typedef struct drape_sleep_desc {
+    uint32_t struct_size;
+    float threshold;      /**< m/s, in [0, 100]; 0 = never sleep. Typical 0.01 */
+    float time;           /**< s, in [0, 100]: how long motion must stay below threshold. Typical 1 */
+} drape_sleep_desc;
+
+DRAPE_API drape_status drape_cloth_set_sleep(drape_cloth* cloth, const drape_sleep_desc* desc);
+/** Wakes the cloth (it sleeps again after `time` seconds of stillness). */
+DRAPE_API drape_status drape_cloth_wake(drape_cloth* cloth);
+
+/* C# twin: Drape.Core.View. Matrices are 4x4, column-major (glm, OpenGL and Unity's Matrix4x4
+ * memory order: element (row r, column c) at [c*4 + r]); OpenGL clip conventions (NDC in
+ * [-1,1]^3; Unity: GL.GetGPUProjectionMatrix is not needed, pass Camera.projectionMatrix). */
+typedef struct drape_view {
+    uint32_t struct_size;
+    float world[16];      /**< simulation space -> world (identity if the cloth simulates in world space) */
+    float view[16];       /**< world -> camera */
+    float projection[16]; /**< camera -> clip */
+    float viewport[2];    /**< pixels, width and height (> 0); screen origin bottom-left */
+} drape_view;
+
+/* C# twin: Drape.Core.Touch. Touch drag, paper eq. 9 (with the exponent's sign restored):
+ *   c = min(1, A exp(-r^2 / (2 sigma))),  r = screen distance (px) of the vertex from the touch.
+ * The vertex's screen position moves by c * motion and is unprojected at its own depth. As in the
+ * paper, sigma divides r^2 directly (it is a variance, px^2), and A = 200, sigma = 300 px^2 (the
+ * paper's constants, interpreted in pixels: in NDC units they would give the same c everywhere).
+ * Drape clamps c to 1 so no vertex outruns the finger: with the defaults the vertices within
+ * sqrt(2 sigma ln A) = 56 px follow the finger fully, c = 0.5 at 60 px, 0.01 at 77 px. */
+typedef struct drape_touch {
+    uint32_t struct_size;
+    float position[2];    /**< px, where the finger was at the previous call (the touch point) */
+    float motion[2];      /**< px, finger motion since then */
+    float amplitude;      /**< A, > 0. Default 200 */
+    float sigma;          /**< px^2, > 0. Default 300 */
+} drape_touch;
+
+/** Fills struct_size and the defaults (position, motion 0; A 200; sigma 300). */
+DRAPE_API drape_status drape_touch_default(drape_touch* out_touch);
+/** Drags the cloth with `count` touches (0..16) seen through `view`; the displacement is spread
+ *  over the next step (the dragged vertices get the finger's velocity). Several calls before a
+ *  step add up. Kinematic (pinned, grabbed) vertices are not moved. Wakes the cloth if anything moves. */
+DRAPE_API drape_status drape_cloth_drag(drape_cloth* cloth, const drape_view* view, const drape_touch* touches,
+                                        uint32_t count);
+/** Pick-and-hold: grabs the free vertex nearest (on screen) to `position` (px) within
+ *  `pick_radius` px and holds it as a moving pin at its current depth. `touch_id` names the grab
+ *  (at most 16 at once; grabbing with a live id releases the old one first). *out_vertex = the
+ *  caller vertex, or UINT32_MAX if none was within the radius (still DRAPE_OK). */
+DRAPE_API drape_status drape_cloth_grab(drape_cloth* cloth, const drape_view* view, uint32_t touch_id,
+                                        const float position[2], float pick_radius, uint32_t* out_vertex);
+/** Moves a grabbed vertex under the finger at `position` (px), at the depth it was grabbed at;
+ *  the move is spread over the next step like a pin move. INVALID_ARGUMENT if touch_id holds nothing. */
+DRAPE_API drape_status drape_cloth_grab_move(drape_cloth* cloth, const drape_view* view, uint32_t touch_id,
+                                             const float position[2]);
+/** Releases a grab (the vertex gets its inverse mass back and keeps its velocity). Unknown id: OK. */
+DRAPE_API drape_status drape_cloth_grab_release(drape_cloth* cloth, uint32_t touch_id);
+
+/* C# twin: Drape.Core.Owner. The transform of the object the cloth hangs on (character, flag
+ * pole), in simulation space. Pinned vertices move rigidly with it. Free vertices are carried
+ * along by (1 - inertia) of the owner's motion without gaining velocity: inertia 0 simulates the
+ * cloth fully in the owner's local space (owner motion has no inertial effect), 1 fully in world
+ * space (the cloth lags and swings as the pins drag it). A jump of the owner's position by more
+ * than teleport_distance moves the whole cloth rigidly with it (shape and velocities kept) instead
+ * of stretching it across the world. */
+typedef struct drape_owner {
+    uint32_t struct_size;
+    float position[3];        /**< m */
+    float rotation[4];        /**< unit quaternion x, y, z, w */
+    float linear_inertia;     /**< [0, 1], default 1 */
+    float angular_inertia;    /**< [0, 1], default 1 */
+    float teleport_distance;  /**< m, > 0; default 1 */
+} drape_owner;
+
+/** Fills struct_size and defaults (identity transform, inertia 1, teleport_distance 1 m). */
+DRAPE_API drape_status drape_owner_default(drape_owner* out_owner);
+/** Sets the owner transform for this frame. The first call only records it; later calls move
+ *  pins and cloth by the change since the previous call (see drape_owner). Wakes on change. */
+DRAPE_API drape_status drape_cloth_set_owner(drape_cloth* cloth, const drape_owner* owner);
 
 #ifdef __cplusplus
 }

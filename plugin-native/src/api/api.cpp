@@ -10,9 +10,13 @@
 #include <unordered_map>
 
 #include "core/cloth.h"
+#include "core/drag.h"  // issue 5
 #include "core/params.h"
 #include "core/topology.h"
 #include "drape/drape.h"
+#ifdef DRAPE_WITH_GLES
+#include "backend/gles/gles_cloth.h"
+#endif
 
 using namespace drape;
 
@@ -114,14 +118,76 @@ drape_status check_cloth_desc(const drape_cloth_desc* desc) {
                   "total_mass must be in (0, 1e6] kg");
     uint32_t available = 0;
     drape_backend_available(desc->backend, &available);
+#ifdef DRAPE_WITH_GLES
+    std::string why;
+    DRAPE_REQUIRE(available || desc->backend != DRAPE_BACKEND_GLES || (gles::context_current(&why), false),
+                  DRAPE_ERROR_BACKEND_UNAVAILABLE,
+                  "backend GLES needs an OpenGL ES 3 context current on the calling thread (or a Unity "
+                  "OpenGLES3 device): " + why);
+#endif
     DRAPE_REQUIRE(available, DRAPE_ERROR_BACKEND_UNAVAILABLE,
                   "backend " + std::to_string(desc->backend) + " is not available in this build or on this thread");
     return DRAPE_OK;
 }
 
+// Setters: a GLES cloth keeps its state on the GPU, so they go through GlesCloth::edit (state
+// read back first where the setter needs it; on Unity's main thread queued for the render thread).
+enum class Access { ReadsState, WritesState, NoState };
+template <class Fn>
+drape_status apply_edit(Cloth* c, Access access, Fn&& fn) {
+#ifdef DRAPE_WITH_GLES
+    if (c->backend() == DRAPE_BACKEND_GLES) {
+        const auto a = access == Access::ReadsState    ? gles::GlesCloth::Access::ReadsState
+                       : access == Access::WritesState ? gles::GlesCloth::Access::WritesState
+                                                       : gles::GlesCloth::Access::NoState;
+        Result r = static_cast<gles::GlesCloth*>(c)->edit(a, std::forward<Fn>(fn));
+        return r.ok() ? ok() : fail(r.status, r.message);
+    }
+#endif
+    (void)access;
+    fn(*c);
+    return ok();
+}
+
+drape_status check_layout(const drape_vertex_layout* layout) {
+    DRAPE_CHECK_STRUCT(layout, drape_vertex_layout);
+    DRAPE_REQUIRE(layout->stride >= 12 && layout->stride % 4 == 0 && layout->stride <= 1024,
+                  DRAPE_ERROR_INVALID_ARGUMENT, "stride must be a multiple of 4 in [12, 1024]");
+    DRAPE_REQUIRE(layout->position_offset >= 0 || layout->normal_offset >= 0, DRAPE_ERROR_INVALID_ARGUMENT,
+                  "layout writes neither positions nor normals");
+    for (int32_t off : {layout->position_offset, layout->normal_offset}) {
+        if (off < 0) continue;
+        DRAPE_REQUIRE(off % 4 == 0 && uint32_t(off) + 12 <= layout->stride, DRAPE_ERROR_INVALID_ARGUMENT,
+                      "offset " + std::to_string(off) + " is not a multiple of 4 or does not fit in stride " +
+                          std::to_string(layout->stride));
+    }
+    DRAPE_REQUIRE(layout->position_offset < 0 || layout->normal_offset < 0 ||
+                      std::abs(layout->position_offset - layout->normal_offset) >= 12,
+                  DRAPE_ERROR_INVALID_ARGUMENT, "position and normal overlap");
+    return DRAPE_OK;
+}
+
 drape_status finish_create(drape_world* world, const drape_cloth_desc* desc, Topology topo, drape_cloth** out) {
     World& w = *as_world(world);
-    auto* cloth = new Cloth(w, drape_backend(desc->backend), std::move(topo));
+    Cloth* cloth = nullptr;
+#ifdef DRAPE_WITH_GLES
+    if (desc->backend == DRAPE_BACKEND_GLES) {
+        // A context current here: GL work happens in the caller's calls. None (Unity main thread
+        // with an OpenGLES3 device): calls record, the render event does the GL work.
+        const bool here = gles::context_current();
+        auto* g = new gles::GlesCloth(w, std::move(topo),
+                                      here ? gles::GlesCloth::Mode::Immediate : gles::GlesCloth::Mode::RenderThread);
+        if (here) {
+            Result r = g->init_gl();
+            if (!r.ok()) {
+                delete g;
+                return fail(r.status, r.message);
+            }
+        }
+        cloth = g;
+    }
+#endif
+    if (!cloth) cloth = new Cloth(w, drape_backend(desc->backend), std::move(topo));
     w.add(cloth);
     track(cloth, Kind::Cloth);
     *out = reinterpret_cast<drape_cloth*>(cloth);
@@ -161,6 +227,9 @@ drape_status drape_backend_available(uint32_t backend, uint32_t* out_available) 
     DRAPE_REQUIRE(backend <= DRAPE_BACKEND_GLES, DRAPE_ERROR_INVALID_ENUM,
                   "backend " + std::to_string(backend) + " is not a drape_backend");
     *out_available = backend == DRAPE_BACKEND_CPU || backend == DRAPE_BACKEND_CPU_THREADED;
+#ifdef DRAPE_WITH_GLES
+    if (backend == DRAPE_BACKEND_GLES) *out_available = gles::context_current() || gles::render_thread_device_ready();
+#endif
     return ok();
 }
 
@@ -272,10 +341,8 @@ drape_status drape_cloth_set_params(drape_cloth* cloth, const drape_params* para
     drape_status status;
     std::string problem = validate_params(*params, &status);
     if (status != DRAPE_OK) return fail(status, problem);
-    return guarded([&] {
-        as_cloth(cloth)->set_params(*params);
-        return ok();
-    });
+    const drape_params p = *params;
+    return guarded([&] { return apply_edit(as_cloth(cloth), Access::NoState, [p](Cloth& c) { c.set_params(p); }); });
 }
 
 drape_status drape_cloth_get_params(const drape_cloth* cloth, drape_params* out_params) {
@@ -294,8 +361,8 @@ drape_status drape_cloth_set_inverse_masses(drape_cloth* cloth, const float* inv
                       "inverse mass of vertex " + std::to_string(v) + " must be in [0, 1e9] 1/kg");
     }
     return guarded([&] {
-        as_cloth(cloth)->set_inverse_masses(inverse_masses);
-        return ok();
+        std::vector<float> w(inverse_masses, inverse_masses + count);
+        return apply_edit(as_cloth(cloth), Access::ReadsState, [w](Cloth& c) { c.set_inverse_masses(w.data()); });
     });
 }
 
@@ -314,8 +381,16 @@ drape_status drape_cloth_set_pins(drape_cloth* cloth, const drape_pin* pins, uin
                       "pin " + std::to_string(k) + " position is beyond 1e6 m");
     }
     return guarded([&] {
-        as_cloth(cloth)->set_pins(pins, count);
-        return ok();
+        // Moving pins that are already pinned only changes targets (no GPU readback on GLES).
+        const Cloth* c = as_cloth(cloth);
+        bool all_pinned = true;
+        for (uint32_t k = 0; k < count && all_pinned; ++k) {
+            const drape_pin& pin = pins[k];
+            all_pinned = c->is_pinned(pin.vertex);
+        }
+        std::vector<drape_pin> copy(pins, pins + count);
+        return apply_edit(as_cloth(cloth), all_pinned ? Access::NoState : Access::ReadsState,
+                          [copy](Cloth& c) { c.set_pins(copy.data(), uint32_t(copy.size())); });
     });
 }
 
@@ -327,8 +402,9 @@ drape_status drape_cloth_release_pins(drape_cloth* cloth, const uint32_t* vertic
         DRAPE_REQUIRE(vertices[k] < n, DRAPE_ERROR_INDEX_OUT_OF_RANGE,
                       "vertex " + std::to_string(vertices[k]) + " >= vertex count " + std::to_string(n));
     return guarded([&] {
-        as_cloth(cloth)->release_pins(vertices, count);
-        return ok();
+        std::vector<uint32_t> copy(vertices, vertices + count);
+        return apply_edit(as_cloth(cloth), Access::ReadsState,
+                          [copy](Cloth& c) { c.release_pins(copy.data(), uint32_t(copy.size())); });
     });
 }
 
@@ -336,8 +412,8 @@ drape_status drape_cloth_set_positions(drape_cloth* cloth, const float* position
     if (drape_status s = check_vertex_array(cloth, positions, count, "positions")) return s;
     if (drape_status s = check_xyz_array(positions, count, "position")) return s;
     return guarded([&] {
-        as_cloth(cloth)->set_positions(positions);
-        return ok();
+        std::vector<float> copy(positions, positions + size_t(count) * 3);
+        return apply_edit(as_cloth(cloth), Access::WritesState, [copy](Cloth& c) { c.set_positions(copy.data()); });
     });
 }
 
@@ -345,8 +421,8 @@ drape_status drape_cloth_set_velocities(drape_cloth* cloth, const float* velocit
     if (drape_status s = check_vertex_array(cloth, velocities, count, "velocities")) return s;
     if (drape_status s = check_xyz_array(velocities, count, "velocity")) return s;
     return guarded([&] {
-        as_cloth(cloth)->set_velocities(velocities);
-        return ok();
+        std::vector<float> copy(velocities, velocities + size_t(count) * 3);
+        return apply_edit(as_cloth(cloth), Access::ReadsState, [copy](Cloth& c) { c.set_velocities(copy.data()); });
     });
 }
 
@@ -363,25 +439,18 @@ drape_status drape_cloth_step(drape_cloth* cloth, float dt) {
 drape_status drape_cloth_read(const drape_cloth* cloth, const drape_vertex_layout* layout, void* dst,
                               size_t dst_size) {
     if (drape_status s = check_cloth(cloth)) return s;
-    DRAPE_CHECK_STRUCT(layout, drape_vertex_layout);
+    if (drape_status s = check_layout(layout)) return s;
     DRAPE_REQUIRE(dst != nullptr, DRAPE_ERROR_NULL_POINTER, "dst is NULL");
-    DRAPE_REQUIRE(layout->stride >= 12 && layout->stride % 4 == 0 && layout->stride <= 1024,
-                  DRAPE_ERROR_INVALID_ARGUMENT, "stride must be a multiple of 4 in [12, 1024]");
-    DRAPE_REQUIRE(layout->position_offset >= 0 || layout->normal_offset >= 0, DRAPE_ERROR_INVALID_ARGUMENT,
-                  "layout writes neither positions nor normals");
-    for (int32_t off : {layout->position_offset, layout->normal_offset}) {
-        if (off < 0) continue;
-        DRAPE_REQUIRE(off % 4 == 0 && uint32_t(off) + 12 <= layout->stride, DRAPE_ERROR_INVALID_ARGUMENT,
-                      "offset " + std::to_string(off) + " is not a multiple of 4 or does not fit in stride " +
-                          std::to_string(layout->stride));
-    }
-    DRAPE_REQUIRE(layout->position_offset < 0 || layout->normal_offset < 0 ||
-                      std::abs(layout->position_offset - layout->normal_offset) >= 12,
-                  DRAPE_ERROR_INVALID_ARGUMENT, "position and normal overlap");
     const uint64_t needed = uint64_t(as_cloth(cloth)->topology().vertex_count) * layout->stride;
     DRAPE_REQUIRE(dst_size >= needed, DRAPE_ERROR_BUFFER_TOO_SMALL,
                   "dst_size is " + std::to_string(dst_size) + " bytes, the layout needs " + std::to_string(needed));
     return guarded([&] {
+#ifdef DRAPE_WITH_GLES
+        if (as_cloth(cloth)->backend() == DRAPE_BACKEND_GLES) {
+            Result r = static_cast<gles::GlesCloth*>(const_cast<Cloth*>(as_cloth(cloth)))->read_out(*layout, dst);
+            return r.ok() ? ok() : fail(r.status, r.message);
+        }
+#endif
         as_cloth(cloth)->read(*layout, dst);
         return ok();
     });
@@ -406,8 +475,294 @@ drape_status drape_cloth_get_info(const drape_cloth* cloth, drape_cloth_info* ou
 drape_status drape_cloth_get_stats(const drape_cloth* cloth, drape_stats* out_stats) {
     if (drape_status s = check_cloth(cloth)) return s;
     DRAPE_REQUIRE(out_stats != nullptr, DRAPE_ERROR_NULL_POINTER, "out_stats is NULL");
+    // issue 5: drape_stats grew `sleeping` at its end; callers built against the shorter struct
+    // (struct_size = offsetof(drape_stats, sleeping)) get that prefix; other sizes are refused.
+    const uint32_t size = out_stats->struct_size;
+    DRAPE_REQUIRE(size == sizeof(drape_stats) || size == offsetof(drape_stats, sleeping), DRAPE_ERROR_STRUCT_SIZE,
+                  "out_stats->struct_size is " + std::to_string(size) + ", this library expects sizeof(drape_stats) = " +
+                      std::to_string(sizeof(drape_stats)) + " (or " + std::to_string(offsetof(drape_stats, sleeping)) +
+                      " without `sleeping`)");
     return guarded([&] {
-        as_cloth(cloth)->stats(out_stats);
+        drape_stats full{};
+        full.struct_size = sizeof full;
+        auto copy_out = [&] {
+            full.struct_size = size;
+            std::memcpy(out_stats, &full, size);
+        };
+#ifdef DRAPE_WITH_GLES
+        if (as_cloth(cloth)->backend() == DRAPE_BACKEND_GLES) {
+            Result r = static_cast<gles::GlesCloth*>(const_cast<Cloth*>(as_cloth(cloth)))->stats_out(&full);
+            if (r.ok()) copy_out();
+            return r.ok() ? ok() : fail(r.status, r.message);
+        }
+#endif
+        as_cloth(cloth)->stats(&full);
+        copy_out();
+        return ok();
+    });
+}
+
+drape_status drape_cloth_set_output_buffer(drape_cloth* cloth, uint32_t gl_buffer, const drape_vertex_layout* layout) {
+    if (drape_status s = check_cloth(cloth)) return s;
+    if (gl_buffer != 0)
+        if (drape_status s = check_layout(layout)) return s;
+    DRAPE_REQUIRE(as_cloth(cloth)->backend() == DRAPE_BACKEND_GLES, DRAPE_ERROR_INVALID_ARGUMENT,
+                  "an output GL buffer needs a GLES cloth; use drape_cloth_read for CPU cloths");
+#ifdef DRAPE_WITH_GLES
+    const drape_vertex_layout l = layout ? *layout : drape_vertex_layout{sizeof(drape_vertex_layout), 12, 0, -1};
+    return guarded([&] {
+        Result r = static_cast<gles::GlesCloth*>(as_cloth(cloth))->set_output(gl_buffer, l);
+        return r.ok() ? ok() : fail(r.status, r.message);
+    });
+#else
+    return fail(DRAPE_ERROR_BACKEND_UNAVAILABLE, "built without GLES");
+#endif
+}
+
+drape_status drape_cloth_readback(drape_cloth* cloth) {
+    if (drape_status s = check_cloth(cloth)) return s;
+    if (as_cloth(cloth)->backend() != DRAPE_BACKEND_GLES) return ok();  // CPU state is always current
+#ifdef DRAPE_WITH_GLES
+    return guarded([&] {
+        Result r = static_cast<gles::GlesCloth*>(as_cloth(cloth))->readback();
+        return r.ok() ? ok() : fail(r.status, r.message);
+    });
+#else
+    return ok();
+#endif
+}
+
+}  // extern "C"
+
+// ---- issue 5: colliders, sleeping, touch drag, grabs, owner transform ------------------------
+// Validation here; the state lives in core/interaction.{h,cpp}.
+namespace {
+
+constexpr float kQuatTolerance = 1e-3f;  // | |q| - 1 | allowed before renormalising
+constexpr float kMaxMargin = 10.0f;       // m
+constexpr float kMaxFriction = 10.0f;
+constexpr float kMaxPickRadius = 1e4f;    // px
+
+bool finite_n(const float* v, int n) {
+    for (int k = 0; k < n; ++k)
+        if (!std::isfinite(v[k])) return false;
+    return true;
+}
+
+drape_status check_unit_quat(const float* q, const std::string& what) {
+    DRAPE_REQUIRE(finite_n(q, 4), DRAPE_ERROR_NOT_FINITE, what + " rotation is NaN or infinite");
+    const float len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    DRAPE_REQUIRE(std::fabs(len - 1.0f) <= kQuatTolerance, DRAPE_ERROR_INVALID_ARGUMENT,
+                  what + " rotation is not a unit quaternion (|q| = " + std::to_string(len) + ")");
+    return DRAPE_OK;
+}
+
+drape_status check_cpu_cloth(const drape_cloth* cloth, const char* what) {
+    if (drape_status s = check_cloth(cloth)) return s;
+    DRAPE_REQUIRE(as_cloth(cloth)->backend() != DRAPE_BACKEND_GLES, DRAPE_ERROR_BACKEND_UNAVAILABLE,
+                  std::string(what) + " is not implemented on the GLES backend yet (CPU backends only)");
+    return DRAPE_OK;
+}
+
+drape_status check_collider(const drape_collider& c, uint32_t k) {
+    const std::string what = "collider " + std::to_string(k);
+    DRAPE_REQUIRE(c.struct_size == sizeof(drape_collider), DRAPE_ERROR_STRUCT_SIZE,
+                  what + " struct_size is " + std::to_string(c.struct_size) +
+                      ", this library expects sizeof(drape_collider) = " + std::to_string(sizeof(drape_collider)));
+    DRAPE_REQUIRE(c.shape <= DRAPE_COLLIDER_PLANE, DRAPE_ERROR_INVALID_ENUM,
+                  what + " shape " + std::to_string(c.shape) + " is not a drape_collider_shape");
+    DRAPE_REQUIRE(finite3(c.position), DRAPE_ERROR_NOT_FINITE, what + " position is NaN or infinite");
+    DRAPE_REQUIRE(bounded3(c.position), DRAPE_ERROR_INVALID_ARGUMENT, what + " position is beyond 1e6 m");
+    if (drape_status s = check_unit_quat(c.rotation, what)) return s;
+    DRAPE_REQUIRE(finite3(c.size) && std::isfinite(c.margin) && std::isfinite(c.friction), DRAPE_ERROR_NOT_FINITE,
+                  what + " size, margin or friction is NaN or infinite");
+    const int used = c.shape == DRAPE_COLLIDER_SPHERE ? 1 : c.shape == DRAPE_COLLIDER_CAPSULE ? 2
+                   : c.shape == DRAPE_COLLIDER_BOX    ? 3 : 0;
+    for (int a = 0; a < used; ++a) {
+        const bool may_be_zero = c.shape == DRAPE_COLLIDER_CAPSULE && a == 1;  // capsule half length
+        DRAPE_REQUIRE((may_be_zero ? c.size[a] >= 0 : c.size[a] > 0) && c.size[a] <= kMaxCoordinate,
+                      DRAPE_ERROR_INVALID_ARGUMENT,
+                      what + " size[" + std::to_string(a) + "] = " + std::to_string(c.size[a]) +
+                          (may_be_zero ? " must be in [0, 1e6] m" : " must be in (0, 1e6] m"));
+    }
+    DRAPE_REQUIRE(c.margin >= 0 && c.margin <= kMaxMargin, DRAPE_ERROR_INVALID_ARGUMENT,
+                  what + " margin must be in [0, 10] m");
+    DRAPE_REQUIRE(c.friction >= 0 && c.friction <= kMaxFriction, DRAPE_ERROR_INVALID_ARGUMENT,
+                  what + " friction must be in [0, 10]");
+    return DRAPE_OK;
+}
+
+drape_status check_view(const drape_view* v) {
+    DRAPE_CHECK_STRUCT(v, drape_view);
+    DRAPE_REQUIRE(finite_n(v->world, 16) && finite_n(v->view, 16) && finite_n(v->projection, 16) &&
+                      finite_n(v->viewport, 2),
+                  DRAPE_ERROR_NOT_FINITE, "view matrices or viewport contain NaN or infinity");
+    DRAPE_REQUIRE(v->viewport[0] >= 1 && v->viewport[1] >= 1 && v->viewport[0] <= 1e5f && v->viewport[1] <= 1e5f,
+                  DRAPE_ERROR_INVALID_ARGUMENT, "viewport must be in [1, 1e5] px");
+    const ScreenMapping m = make_screen_mapping(*v);
+    const double det = glm::determinant(m.mvp);
+    DRAPE_REQUIRE(std::isfinite(det) && std::fabs(det) > 1e-30, DRAPE_ERROR_INVALID_ARGUMENT,
+                  "projection * view * world is singular (cannot unproject)");
+    return DRAPE_OK;
+}
+
+drape_status check_screen_point(const float* p, const char* what) {
+    DRAPE_REQUIRE(p != nullptr, DRAPE_ERROR_NULL_POINTER, std::string(what) + " is NULL");
+    DRAPE_REQUIRE(finite_n(p, 2), DRAPE_ERROR_NOT_FINITE, std::string(what) + " is NaN or infinite");
+    DRAPE_REQUIRE(std::fabs(p[0]) <= 1e6f && std::fabs(p[1]) <= 1e6f, DRAPE_ERROR_INVALID_ARGUMENT,
+                  std::string(what) + " is beyond 1e6 px");
+    return DRAPE_OK;
+}
+
+}  // namespace
+
+extern "C" {
+
+drape_status drape_cloth_set_colliders(drape_cloth* cloth, const drape_collider* colliders, uint32_t count) {
+    if (drape_status s = check_cpu_cloth(cloth, "colliders")) return s;
+    DRAPE_REQUIRE(colliders != nullptr || count == 0, DRAPE_ERROR_NULL_POINTER, "colliders is NULL");
+    DRAPE_REQUIRE(count <= DRAPE_MAX_COLLIDERS, DRAPE_ERROR_INVALID_ARGUMENT,
+                  std::to_string(count) + " colliders, at most " + std::to_string(DRAPE_MAX_COLLIDERS) + " per cloth");
+    for (uint32_t k = 0; k < count; ++k) {
+        if (drape_status s = check_collider(colliders[k], k)) return s;
+        for (uint32_t j = 0; j < k; ++j)
+            DRAPE_REQUIRE(colliders[j].id != colliders[k].id, DRAPE_ERROR_INVALID_ARGUMENT,
+                          "colliders " + std::to_string(j) + " and " + std::to_string(k) + " share id " +
+                              std::to_string(colliders[k].id));
+    }
+    return guarded([&] {
+        as_cloth(cloth)->set_colliders(colliders, count);
+        return ok();
+    });
+}
+
+drape_status drape_cloth_set_sleep(drape_cloth* cloth, const drape_sleep_desc* desc) {
+    if (drape_status s = check_cpu_cloth(cloth, "sleeping")) return s;
+    DRAPE_CHECK_STRUCT(desc, drape_sleep_desc);
+    DRAPE_REQUIRE(std::isfinite(desc->threshold) && std::isfinite(desc->time), DRAPE_ERROR_NOT_FINITE,
+                  "sleep threshold or time is NaN or infinite");
+    DRAPE_REQUIRE(desc->threshold >= 0 && desc->threshold <= 100, DRAPE_ERROR_INVALID_ARGUMENT,
+                  "sleep threshold must be in [0, 100] m/s");
+    DRAPE_REQUIRE(desc->time >= 0 && desc->time <= 100, DRAPE_ERROR_INVALID_ARGUMENT,
+                  "sleep time must be in [0, 100] s");
+    return guarded([&] {
+        as_cloth(cloth)->set_sleep(desc->threshold, desc->time);
+        return ok();
+    });
+}
+
+drape_status drape_cloth_wake(drape_cloth* cloth) {
+    if (drape_status s = check_cloth(cloth)) return s;
+    as_cloth(cloth)->wake();
+    return ok();
+}
+
+drape_status drape_touch_default(drape_touch* out_touch) {
+    DRAPE_REQUIRE(out_touch != nullptr, DRAPE_ERROR_NULL_POINTER, "out_touch is NULL");
+    drape_touch t{};
+    t.struct_size = sizeof t;
+    t.amplitude = kTouchAmplitude;
+    t.sigma = kTouchSigma;
+    *out_touch = t;
+    return ok();
+}
+
+drape_status drape_cloth_drag(drape_cloth* cloth, const drape_view* view, const drape_touch* touches, uint32_t count) {
+    if (drape_status s = check_cpu_cloth(cloth, "touch drag")) return s;
+    if (drape_status s = check_view(view)) return s;
+    DRAPE_REQUIRE(touches != nullptr || count == 0, DRAPE_ERROR_NULL_POINTER, "touches is NULL");
+    DRAPE_REQUIRE(count <= kMaxTouches, DRAPE_ERROR_INVALID_ARGUMENT,
+                  std::to_string(count) + " touches, at most " + std::to_string(kMaxTouches));
+    for (uint32_t k = 0; k < count; ++k) {
+        const drape_touch& t = touches[k];
+        const std::string what = "touch " + std::to_string(k);
+        DRAPE_REQUIRE(t.struct_size == sizeof(drape_touch), DRAPE_ERROR_STRUCT_SIZE,
+                      what + " struct_size is " + std::to_string(t.struct_size) +
+                          ", this library expects sizeof(drape_touch) = " + std::to_string(sizeof(drape_touch)));
+        if (drape_status s = check_screen_point(t.position, (what + " position").c_str())) return s;
+        if (drape_status s = check_screen_point(t.motion, (what + " motion").c_str())) return s;
+        DRAPE_REQUIRE(std::isfinite(t.amplitude) && std::isfinite(t.sigma), DRAPE_ERROR_NOT_FINITE,
+                      what + " amplitude or sigma is NaN or infinite");
+        DRAPE_REQUIRE(t.amplitude > 0 && t.amplitude <= 1e6f, DRAPE_ERROR_INVALID_ARGUMENT,
+                      what + " amplitude must be in (0, 1e6]");
+        DRAPE_REQUIRE(t.sigma > 0 && t.sigma <= 1e12f, DRAPE_ERROR_INVALID_ARGUMENT,
+                      what + " sigma must be in (0, 1e12] px^2");
+    }
+    return guarded([&] {
+        as_cloth(cloth)->drag(*view, touches, count);
+        return ok();
+    });
+}
+
+drape_status drape_cloth_grab(drape_cloth* cloth, const drape_view* view, uint32_t touch_id, const float position[2],
+                              float pick_radius, uint32_t* out_vertex) {
+    if (drape_status s = check_cpu_cloth(cloth, "grab")) return s;
+    if (drape_status s = check_view(view)) return s;
+    if (drape_status s = check_screen_point(position, "position")) return s;
+    DRAPE_REQUIRE(out_vertex != nullptr, DRAPE_ERROR_NULL_POINTER, "out_vertex is NULL");
+    DRAPE_REQUIRE(std::isfinite(pick_radius), DRAPE_ERROR_NOT_FINITE, "pick_radius is NaN or infinite");
+    DRAPE_REQUIRE(pick_radius > 0 && pick_radius <= kMaxPickRadius, DRAPE_ERROR_INVALID_ARGUMENT,
+                  "pick_radius must be in (0, 1e4] px");
+    Cloth* c = as_cloth(cloth);
+    return guarded([&] {
+        // At most kMaxGrabs at once (a grab with a live id replaces it, so does not count).
+        if (c->grab_count() >= kMaxGrabs && !c->grabbing(touch_id))
+            return fail(DRAPE_ERROR_INVALID_ARGUMENT, "already " + std::to_string(kMaxGrabs) + " grabs held");
+        *out_vertex = c->grab(*view, touch_id, position, pick_radius);
+        return ok();
+    });
+}
+
+drape_status drape_cloth_grab_move(drape_cloth* cloth, const drape_view* view, uint32_t touch_id,
+                                   const float position[2]) {
+    if (drape_status s = check_cpu_cloth(cloth, "grab")) return s;
+    if (drape_status s = check_view(view)) return s;
+    if (drape_status s = check_screen_point(position, "position")) return s;
+    DRAPE_REQUIRE(as_cloth(cloth)->grabbing(touch_id), DRAPE_ERROR_INVALID_ARGUMENT,
+                  "touch_id " + std::to_string(touch_id) + " holds no grabbed vertex");
+    return guarded([&] {
+        if (!as_cloth(cloth)->grab_move(*view, touch_id, position))
+            return fail(DRAPE_ERROR_INVALID_ARGUMENT, "position does not unproject to a finite point");
+        return ok();
+    });
+}
+
+drape_status drape_cloth_grab_release(drape_cloth* cloth, uint32_t touch_id) {
+    if (drape_status s = check_cpu_cloth(cloth, "grab")) return s;
+    return guarded([&] {
+        as_cloth(cloth)->grab_release(touch_id);
+        return ok();
+    });
+}
+
+drape_status drape_owner_default(drape_owner* out_owner) {
+    DRAPE_REQUIRE(out_owner != nullptr, DRAPE_ERROR_NULL_POINTER, "out_owner is NULL");
+    drape_owner o{};
+    o.struct_size = sizeof o;
+    o.rotation[3] = 1;
+    o.linear_inertia = 1;
+    o.angular_inertia = 1;
+    o.teleport_distance = 1;
+    *out_owner = o;
+    return ok();
+}
+
+drape_status drape_cloth_set_owner(drape_cloth* cloth, const drape_owner* owner) {
+    if (drape_status s = check_cpu_cloth(cloth, "owner transform")) return s;
+    DRAPE_CHECK_STRUCT(owner, drape_owner);
+    DRAPE_REQUIRE(finite3(owner->position), DRAPE_ERROR_NOT_FINITE, "owner position is NaN or infinite");
+    DRAPE_REQUIRE(bounded3(owner->position), DRAPE_ERROR_INVALID_ARGUMENT, "owner position is beyond 1e6 m");
+    if (drape_status s = check_unit_quat(owner->rotation, "owner")) return s;
+    DRAPE_REQUIRE(std::isfinite(owner->linear_inertia) && std::isfinite(owner->angular_inertia) &&
+                      std::isfinite(owner->teleport_distance),
+                  DRAPE_ERROR_NOT_FINITE, "owner inertia or teleport_distance is NaN or infinite");
+    DRAPE_REQUIRE(owner->linear_inertia >= 0 && owner->linear_inertia <= 1 && owner->angular_inertia >= 0 &&
+                      owner->angular_inertia <= 1,
+                  DRAPE_ERROR_INVALID_ARGUMENT, "owner inertia scales must be in [0, 1]");
+    DRAPE_REQUIRE(owner->teleport_distance > 0 && owner->teleport_distance <= 1e6f, DRAPE_ERROR_INVALID_ARGUMENT,
+                  "owner teleport_distance must be in (0, 1e6] m");
+    return guarded([&] {
+        as_cloth(cloth)->set_owner(*owner);
         return ok();
     });
 }

@@ -69,11 +69,13 @@ void Cloth::refresh_derived() {
 }
 
 void Cloth::set_params(const drape_params& p) {
+    if (std::memcmp(&p, &params_, sizeof p) != 0) wake();  // issue 5
     params_ = p;
     refresh_derived();
 }
 
 void Cloth::set_inverse_masses(const float* inverse_masses) {
+    wake();  // issue 5
     const uint32_t n = topo_.particle_count;
     std::vector<float> w(n, INFINITY);
     for (uint32_t v = 0; v < topo_.vertex_count; ++v) {
@@ -89,6 +91,7 @@ void Cloth::set_inverse_masses(const float* inverse_masses) {
 }
 
 void Cloth::set_pins(const drape_pin* pins, uint32_t count) {
+    if (pins_change(pins, count)) wake();  // issue 5
     for (uint32_t k = 0; k < count; ++k) {
         const uint32_t i = topo_.vertex_to_particle[pins[k].vertex];
         pinned_[i] = 1;
@@ -98,6 +101,7 @@ void Cloth::set_pins(const drape_pin* pins, uint32_t count) {
 }
 
 void Cloth::release_pins(const uint32_t* vertices, uint32_t count) {
+    if (count) wake();  // issue 5
     for (uint32_t k = 0; k < count; ++k) {
         const uint32_t i = topo_.vertex_to_particle[vertices[k]];
         pinned_[i] = 0;
@@ -107,6 +111,7 @@ void Cloth::release_pins(const uint32_t* vertices, uint32_t count) {
 }
 
 void Cloth::set_positions(const float* xyz) {
+    wake();  // issue 5
     for (uint32_t v = 0; v < topo_.vertex_count; ++v) {
         const uint32_t i = topo_.vertex_to_particle[v];
         const glm::vec3 p(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
@@ -117,6 +122,7 @@ void Cloth::set_positions(const float* xyz) {
 }
 
 void Cloth::set_velocities(const float* xyz) {
+    wake();  // issue 5
     for (uint32_t v = 0; v < topo_.vertex_count; ++v) {
         const uint32_t i = topo_.vertex_to_particle[v];
         if (buffers_[cur_][i].w == 0.0f) continue;  // kinematic particles follow their targets
@@ -142,6 +148,7 @@ void Cloth::for_particles(Fn&& fn) {
 }
 
 Result Cloth::step(float dt) {
+    if (skip_step_asleep()) return {};  // issue 5: asleep -> no work (core/interaction.cpp)
     const auto t0 = std::chrono::steady_clock::now();
     const uint32_t n = topo_.particle_count;
     const NeighbourTable& nb = topo_.nbr;
@@ -221,6 +228,8 @@ Result Cloth::step(float dt) {
             cur_ = result;
             spare_ = other;
         }
+        // issue 5: touch drag + colliders on the committed positions (core/interaction.cpp)
+        if (!ix_.colliders.empty() || !ix_.drag_particles.empty()) interaction_substep(sub, substeps);
         h_prev_ = h;
         fresh_ = false;
     }
@@ -277,6 +286,7 @@ Result Cloth::step(float dt) {
         fresh_ = backup_fresh;
         for (uint32_t k : kinematic_) kinematic_target_[k] = glm::vec3(buffers_[cur_][k]);
         ++stats_.unstable_steps;
+        interaction_end_step(dt, true);  // issue 5
         return {DRAPE_ERROR_UNSTABLE,
                 std::string("step diverged (") + (total.finite ? "runaway strain" : "non-finite positions") +
                     " with " + std::to_string(substeps) + " substeps of " + std::to_string(h) +
@@ -284,6 +294,7 @@ Result Cloth::step(float dt) {
     }
     stats_.max_strain = total.max_strain;
     stats_.rms_strain = total.count ? std::sqrt(total.sum_sq / float(total.count)) : 0.0f;
+    interaction_end_step(dt, false);  // issue 5: colliders advance, drag consumed, sleep check
     return {};
 }
 
@@ -361,7 +372,8 @@ Result World::step(float dt) {
     const uint32_t threads = pool_.size();
     serial_.clear();
     threaded_.clear();
-    for (Cloth* c : cloths_) (c->backend() == DRAPE_BACKEND_CPU_THREADED ? threaded_ : serial_).push_back(c);
+    // GLES cloths need the caller's GL context: stepped on this thread with the threaded ones.
+    for (Cloth* c : cloths_) (c->backend() == DRAPE_BACKEND_CPU ? serial_ : threaded_).push_back(c);
     results_.resize(serial_.size());
     if (threads > 1 && serial_.size() > 1) {
         pool_.run_on_all([&](uint32_t t) {

@@ -10,6 +10,7 @@
 #include <glm/vec4.hpp>
 
 #include "backend/cpu/thread_pool.h"
+#include "core/interaction.h"  // issue 5: colliders, drag, owner, sleep
 #include "core/params.h"
 #include "core/topology.h"
 #include "drape/drape.h"
@@ -34,6 +35,7 @@ public:
     drape_backend backend() const { return backend_; }
     const Topology& topology() const { return topo_; }
     const drape_params& params() const { return params_; }
+    bool is_pinned(uint32_t vertex) const { return pinned_[topo_.vertex_to_particle[vertex]] != 0; }
 
     void set_params(const drape_params& p);
     /// Per caller vertex; welded copies take the smallest value.
@@ -43,12 +45,34 @@ public:
     void set_positions(const float* xyz);
     void set_velocities(const float* xyz);
 
-    /// Steps by dt; on divergence restores the state from before the step.
-    Result step(float dt);
+    /// Steps by dt; on divergence restores the state from before the step. Virtual for the GLES
+    /// backend (src/backend/gles), which steps on the GPU.
+    virtual Result step(float dt);
 
     /// Writes positions/normals per caller vertex. Layout and size already validated.
     void read(const drape_vertex_layout& layout, void* dst) const;
     void stats(drape_stats* out) const;
+
+    // ---- issue 5: colliders, sleep, touch drag, grabs, owner (defined in core/interaction.cpp) ----
+    void set_colliders(const drape_collider* colliders, uint32_t count);
+    void set_sleep(float threshold, float time);
+    void wake();
+    bool asleep() const { return ix_.asleep; }
+    /// True if these pins would move or newly pin a vertex (a reason to wake).
+    bool pins_change(const drape_pin* pins, uint32_t count) const;
+    void drag(const drape_view& view, const drape_touch* touches, uint32_t count);
+    /// Caller vertex grabbed, or UINT32_MAX if no free vertex lies within pick_radius px.
+    uint32_t grab(const drape_view& view, uint32_t touch_id, const float position[2], float pick_radius);
+    bool grab_move(const drape_view& view, uint32_t touch_id, const float position[2]);
+    void grab_release(uint32_t touch_id);
+    void set_owner(const drape_owner& owner);
+    uint64_t collide_tests() const { return ix_.collide_tests; }
+    uint32_t grab_count() const { return uint32_t(ix_.grabs.size()); }
+    bool grabbing(uint32_t touch_id) const {
+        for (const Grab& g : ix_.grabs)
+            if (g.touch_id == touch_id) return true;
+        return false;
+    }
 
     /// Substeps a step of dt uses with the current parameters.
     uint32_t substeps_for(float dt) const;
@@ -59,6 +83,11 @@ protected:
     using Particle = glm::vec4;
 
     void refresh_derived();  // after params or masses change
+    // issue 5 hooks in step() (core/interaction.cpp)
+    bool skip_step_asleep();
+    void interaction_substep(uint32_t sub, uint32_t substeps);
+    void interaction_end_step(float dt, bool rolled_back);
+    Interaction ix_;
     template <class Fn>
     void for_particles(Fn&& fn);
 

@@ -17,7 +17,7 @@ drape_params default_params() {
     p.stiffness[DRAPE_GROUP_STRUCTURAL] = 2000.0f;
     p.stiffness[DRAPE_GROUP_SHEAR] = 1000.0f;
     p.stiffness[DRAPE_GROUP_BEND] = 200.0f;
-    p.damping = 0.5f;
+    p.damping = 0.05f;
     p.gravity[1] = -9.81f;
     p.air_drag = 0.1f;
     p.substeps = 0;

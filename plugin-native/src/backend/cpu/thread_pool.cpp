@@ -11,9 +11,11 @@
 
 namespace drape {
 namespace {
-// Spin this many rounds before sleeping: covers the gap between passes of one step (µs) but
-// not the gap between frames (ms).
-constexpr int kSpinRounds = 20000;
+// Waiting: spin this many rounds (the gap between passes of one step is µs), then yield the
+// core this many times (so an oversubscribed machine still runs the thread that has work),
+// then sleep (the gap between frames is ms).
+constexpr int kSpinRounds = 2000;
+constexpr int kYieldRounds = 200;
 }  // namespace
 
 ThreadPool::ThreadPool(uint32_t threads) {
@@ -52,8 +54,11 @@ void ThreadPool::worker_main(uint32_t index) {
     uint32_t seen = 0;
     for (;;) {
         uint32_t gen = generation_.load();
-        for (int spins = 0; gen == seen && spins < kSpinRounds; ++spins) {
-            DRAPE_CPU_RELAX();
+        for (int spins = 0; gen == seen && spins < kSpinRounds + kYieldRounds; ++spins) {
+            if (spins < kSpinRounds)
+                DRAPE_CPU_RELAX();
+            else
+                std::this_thread::yield();
             gen = generation_.load();
         }
         if (gen == seen) {

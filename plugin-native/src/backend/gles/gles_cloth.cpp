@@ -1,0 +1,957 @@
+#include "backend/gles/gles_cloth.h"
+
+#include <EGL/egl.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <set>
+
+#include <glm/geometric.hpp>
+
+#include "backend/gles/shaders.h"  // generated from shaders/*.glsl
+#include "core/params.h"
+
+namespace drape::gles {
+namespace {
+
+/// Texels per row of every texture (ES 3.0 guarantees GL_MAX_TEXTURE_SIZE >= 2048; rows are
+/// checked against the real limit). One width for all textures: one uniform, one texel().
+constexpr uint32_t kTexWidth = 1024;
+/// XPBD lambdas ride in the record as vec4s; sim.vert.glsl declares up to 8 (32 slots).
+constexpr uint32_t kMaxLambdaVec4 = 8;
+
+enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3 };  // kCommit: last iteration
+enum Uniform {
+    uX, uAux, uNbr, uInfo, uTexWidth, uStiffness, uCompliance, uDampingRatio, uActive, uGravity, uWind, uAirDrag,
+    uDamping, uH, uInvHp, uAccelH, uCoupling, uAlong, uTris, uHRatio, kUniformCount
+};
+const char* const kUniformNames[kUniformCount] = {
+    "u_x", "u_aux", "u_nbr", "u_info", "u_tex_width", "u_stiffness", "u_compliance", "u_damping_ratio", "u_active",
+    "u_gravity", "u_wind", "u_air_drag", "u_damping", "u_h", "u_inv_hp", "u_accel_h", "u_jacobi_coupling",
+    "u_along", "u_tris", "u_h_ratio"};
+// Attribute locations (bound before linking).
+enum Attrib { aX = 0, aAux = 1, aKStart = 2, aKTarget = 3, aLambda0 = 4, aParticle = 0, aKeep0 = 1 };
+constexpr int kMaxAttribs = 16;
+// Texture units: 0 u_x, 1 u_aux, 2 u_nbr, 3 u_info, 4 u_tris, 5 scratch unit for refreshes.
+constexpr int kRefreshUnit = 5;
+
+std::atomic<bool> g_render_device{false};
+
+std::mutex& registry_mutex() {
+    static std::mutex m;
+    return m;
+}
+std::set<GlesCloth*>& registry() {
+    static std::set<GlesCloth*> s;
+    return s;
+}
+// GL objects whose cloth died without their context current: freed when it is next current.
+struct Grave {
+    GlObjects objects;
+};
+std::mutex& grave_mutex() {
+    static std::mutex m;
+    return m;
+}
+std::vector<Grave>& graveyard() {
+    static std::vector<Grave> g;
+    return g;
+}
+
+void delete_now(GlObjects& o) {
+    glDeleteBuffers(3, o.buffers);
+    glDeleteTextures(3, o.textures);
+    GLuint tex[3] = {o.nbr_tex, o.info_tex, o.tri_tex};
+    glDeleteTextures(3, tex);
+    GLuint bufs[4] = {o.kstart, o.targets, o.vertex_to_particle, o.scratch};
+    glDeleteBuffers(4, bufs);
+    if (o.vao) glDeleteVertexArrays(1, &o.vao);
+    if (o.fbo) glDeleteFramebuffers(1, &o.fbo);
+    if (o.rbo) glDeleteRenderbuffers(1, &o.rbo);
+    for (GLuint p : o.programs) glDeleteProgram(p);
+    o = GlObjects{};
+}
+
+void free_graves() {
+    const EGLContext current = eglGetCurrentContext();
+    if (current == EGL_NO_CONTEXT) return;
+    std::lock_guard<std::mutex> lock(grave_mutex());
+    auto& g = graveyard();
+    for (size_t k = 0; k < g.size();) {
+        if (g[k].objects.context == current) {
+            delete_now(g[k].objects);
+            g.erase(g.begin() + std::ptrdiff_t(k));
+        } else {
+            ++k;
+        }
+    }
+}
+
+void drain_gl_errors() {
+    for (int k = 0; k < 32 && glGetError() != GL_NO_ERROR; ++k) {
+    }
+}
+
+Result gl_error(const char* where) {
+    const GLenum e = glGetError();
+    if (e == GL_NO_ERROR) return {};
+    drain_gl_errors();
+    char code[16];
+    std::snprintf(code, sizeof code, "0x%04x", unsigned(e));
+    return {DRAPE_ERROR_GL, std::string("OpenGL ES error ") + code + " in " + where};
+}
+
+/// Saves the GL state a step touches and restores it (Unity caches GL state).
+struct StateGuard {
+    GLint program, vao, array_buffer, unpack, copy_read, copy_write, tf_buffer, draw_fbo, active_tex;
+    GLint tex[6];
+    GLboolean discard;
+    StateGuard() {
+        glGetIntegerv(GL_CURRENT_PROGRAM, &program);
+        glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao);
+        glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &array_buffer);
+        glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack);
+        glGetIntegerv(GL_COPY_READ_BUFFER_BINDING, &copy_read);
+        glGetIntegerv(GL_COPY_WRITE_BUFFER_BINDING, &copy_write);
+        glGetIntegerv(GL_TRANSFORM_FEEDBACK_BUFFER_BINDING, &tf_buffer);
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_fbo);
+        glGetIntegerv(GL_ACTIVE_TEXTURE, &active_tex);
+        for (int u = 0; u < 6; ++u) {
+            glActiveTexture(GL_TEXTURE0 + GLenum(u));
+            glGetIntegerv(GL_TEXTURE_BINDING_2D, &tex[u]);
+        }
+        discard = glIsEnabled(GL_RASTERIZER_DISCARD);
+    }
+    ~StateGuard() {
+        for (int u = 0; u < 6; ++u) {
+            glActiveTexture(GL_TEXTURE0 + GLenum(u));
+            glBindTexture(GL_TEXTURE_2D, GLuint(tex[u]));
+        }
+        glActiveTexture(GLenum(active_tex));
+        if (discard) glEnable(GL_RASTERIZER_DISCARD); else glDisable(GL_RASTERIZER_DISCARD);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_fbo));
+        glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, GLuint(tf_buffer));
+        glBindBuffer(GL_COPY_WRITE_BUFFER, GLuint(copy_write));
+        glBindBuffer(GL_COPY_READ_BUFFER, GLuint(copy_read));
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, GLuint(unpack));
+        glBindVertexArray(GLuint(vao));
+        glBindBuffer(GL_ARRAY_BUFFER, GLuint(array_buffer));
+        glUseProgram(GLuint(program));
+    }
+};
+
+Result compile(GLenum stage, const std::string& source, const char* name, GLuint* out) {
+    GLuint s = glCreateShader(stage);
+    const char* src = source.c_str();
+    glShaderSource(s, 1, &src, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[4096] = {};
+        glGetShaderInfoLog(s, sizeof log, nullptr, log);
+        glDeleteShader(s);
+        return {DRAPE_ERROR_GL, std::string("compiling ") + name + " failed: " + log};
+    }
+    *out = s;
+    return {};
+}
+
+/// Inserts the variant's #defines right after the #version line.
+std::string with_defines(const char* source, const std::string& defines) {
+    std::string s(source);
+    const size_t eol = s.find('\n');
+    return s.substr(0, eol + 1) + defines + s.substr(eol + 1);
+}
+
+Result link(const std::string& vs_source, const char* name, const std::vector<std::string>& varyings,
+            const std::vector<std::pair<GLuint, const char*>>& attribs, GLuint* out) {
+    GLuint vs = 0, fs = 0;
+    if (Result r = compile(GL_VERTEX_SHADER, vs_source, name, &vs); !r.ok()) return r;
+    if (Result r = compile(GL_FRAGMENT_SHADER, shaders::discard_frag, "discard.frag.glsl", &fs); !r.ok()) {
+        glDeleteShader(vs);
+        return r;
+    }
+    GLuint p = glCreateProgram();
+    glAttachShader(p, vs);
+    glAttachShader(p, fs);
+    for (auto& a : attribs) glBindAttribLocation(p, a.first, a.second);
+    std::vector<const char*> names;
+    for (auto& v : varyings) names.push_back(v.c_str());
+    glTransformFeedbackVaryings(p, GLsizei(names.size()), names.data(), GL_INTERLEAVED_ATTRIBS);
+    glLinkProgram(p);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[4096] = {};
+        glGetProgramInfoLog(p, sizeof log, nullptr, log);
+        glDeleteProgram(p);
+        return {DRAPE_ERROR_GL, std::string("linking ") + name + " failed: " + log};
+    }
+    *out = p;
+    return {};
+}
+
+uint32_t rows_for(uint64_t texels) { return uint32_t(std::max<uint64_t>(1, (texels + kTexWidth - 1) / kTexWidth)); }
+
+GLuint make_texture(GLenum internal, uint32_t rows) {
+    GLuint t = 0;
+    glGenTextures(1, &t);
+    glActiveTexture(GL_TEXTURE0 + kRefreshUnit);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glTexStorage2D(GL_TEXTURE_2D, 1, internal, kTexWidth, GLsizei(rows));
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+}
+
+void upload_uint_texture(GLuint t, uint32_t rows, std::vector<uint32_t>& texels) {
+    texels.resize(size_t(kTexWidth) * rows * 4, 0u);
+    glActiveTexture(GL_TEXTURE0 + kRefreshUnit);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTexWidth, GLsizei(rows), GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
+}
+
+}  // namespace
+
+bool GlObjects::empty() const {
+    return !buffers[0] && !textures[0] && !nbr_tex && !vao && programs.empty();
+}
+
+bool context_current(std::string* why) {
+    if (eglGetCurrentContext() == EGL_NO_CONTEXT) {
+        if (why) *why = "no EGL context is current on this thread";
+        return false;
+    }
+    const char* v = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    if (!v || std::strncmp(v, "OpenGL ES ", 10) != 0 || v[10] < '3' || v[10] > '9') {
+        if (why) *why = std::string("the current context is not OpenGL ES 3.x (GL_VERSION: ") + (v ? v : "none") + ")";
+        return false;
+    }
+    return true;
+}
+
+void set_render_thread_device(bool ready) { g_render_device = ready; }
+bool render_thread_device_ready() { return g_render_device; }
+
+void render_thread_tick() {
+    if (!context_current()) return;
+    free_graves();
+    std::lock_guard<std::mutex> lock(registry_mutex());
+    for (GlesCloth* c : registry()) c->run_pending();
+}
+
+void render_thread_shutdown() {
+    {
+        std::lock_guard<std::mutex> lock(registry_mutex());
+        for (GlesCloth* c : registry()) c->drop_gl();
+    }
+    free_graves();
+}
+
+void release_gl(GlObjects& objects) {
+    if (objects.empty()) return;
+    if (eglGetCurrentContext() == objects.context) {
+        delete_now(objects);
+        return;
+    }
+    // Not their context: freed when it is next current on a thread that calls into Drape.
+    std::lock_guard<std::mutex> lock(grave_mutex());
+    graveyard().push_back({objects});
+    objects = GlObjects{};
+}
+
+GlesCloth::GlesCloth(World& world, Topology topology, Mode mode)
+    : Cloth(world, DRAPE_BACKEND_GLES, std::move(topology)), mode_(mode) {
+    // Incident triangles per particle, in triangle order (the order Cloth::read sums them).
+    std::vector<uint32_t> incident(topo_.particle_count, 0);
+    for (uint32_t p : topo_.triangles) ++incident[p];
+    for (uint32_t c : incident) tri_slots_ = std::max(tri_slots_, c);
+    if (mode_ == Mode::RenderThread) {
+        std::lock_guard<std::mutex> lock(registry_mutex());
+        registry().insert(this);
+    }
+}
+
+GlesCloth::~GlesCloth() {
+    if (mode_ == Mode::RenderThread) {
+        std::lock_guard<std::mutex> lock(registry_mutex());
+        registry().erase(this);
+    }
+    // Deleted now where the cloth's context is current (immediate mode); otherwise (Unity main
+    // thread) on the render thread's next event.
+    release_gl(gl_);
+}
+
+uint32_t GlesCloth::record_vec4() const {
+    return params_.model == DRAPE_MODEL_XPBD ? 1 + (topo_.nbr.slots + 3) / 4 : 1;
+}
+
+Result GlesCloth::init_gl() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (Result r = ensure_gl(); !r.ok()) return r;
+    StateGuard guard;
+    if (Result r = sync_gpu(); !r.ok()) return r;
+    Program* p = nullptr;
+    const int first = params_.model == DRAPE_MODEL_MASS_SPRING ? kMassSpring : kPredict;
+    if (Result r = program(first, &p); !r.ok()) return r;
+    if (first == kPredict)
+        for (int pass : {kConstraint, kCommit})
+            if (Result r = program(pass, &p); !r.ok()) return r;
+    return gl_error("creating the GLES cloth");
+}
+
+Result GlesCloth::ensure_gl() {
+    if (gl_ready_) return {};
+    std::string why;
+    if (!context_current(&why)) return {DRAPE_ERROR_BACKEND_UNAVAILABLE, "GLES cloth: " + why};
+    free_graves();
+    if ((topo_.nbr.slots + 3) / 4 > kMaxLambdaVec4 && params_.model == DRAPE_MODEL_XPBD)
+        return {DRAPE_ERROR_INVALID_ARGUMENT, "GLES XPBD supports up to 32 neighbours per vertex; this mesh has " +
+                                                  std::to_string(topo_.nbr.slots)};
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    const uint32_t n = topo_.particle_count;
+    const uint64_t biggest = std::max<uint64_t>({uint64_t(n) * (1 + kMaxLambdaVec4), uint64_t(n) * topo_.nbr.slots,
+                                                 uint64_t(n) * tri_slots_});
+    if (rows_for(biggest) > uint32_t(max_size))
+        return {DRAPE_ERROR_INVALID_ARGUMENT, "cloth too large for GLES textures (" + std::to_string(biggest) +
+                                                  " texels, limit " + std::to_string(uint64_t(max_size) * kTexWidth) + ")"};
+    drain_gl_errors();
+    gl_.context = eglGetCurrentContext();
+    glGenVertexArrays(1, &gl_.vao);
+    glGenBuffers(1, &gl_.targets);
+    glGenBuffers(1, &gl_.vertex_to_particle);
+    glGenBuffers(1, &gl_.kstart);
+    // Static tables.
+    const NeighbourTable& nb = topo_.nbr;
+    const uint32_t nbr_rows = rows_for(uint64_t(n) * nb.slots);
+    gl_.nbr_tex = make_texture(GL_RGBA32UI, nbr_rows);
+    std::vector<uint32_t> texels(size_t(n) * nb.slots * 4);
+    for (size_t s = 0; s < size_t(n) * nb.slots; ++s) {
+        uint32_t rest_bits;
+        std::memcpy(&rest_bits, &nb.rest[s], 4);
+        texels[4 * s] = nb.index[s];
+        texels[4 * s + 1] = rest_bits;
+        texels[4 * s + 2] = nb.group[s];
+    }
+    upload_uint_texture(gl_.nbr_tex, nbr_rows, texels);
+    const uint32_t tri_rows = rows_for(uint64_t(n) * tri_slots_);
+    gl_.tri_tex = make_texture(GL_RGBA32UI, tri_rows);
+    texels.assign(size_t(n) * tri_slots_ * 4, 0u);
+    std::vector<uint32_t> fill(n, 0);
+    const auto& tri = topo_.triangles;
+    for (size_t k = 0; k + 2 < tri.size(); k += 3)
+        for (int c = 0; c < 3; ++c) {
+            const uint32_t p = tri[k + c];
+            uint32_t* t = &texels[(size_t(p) * tri_slots_ + fill[p]++) * 4];
+            t[0] = tri[k];
+            t[1] = tri[k + 1];
+            t[2] = tri[k + 2];
+        }
+    upload_uint_texture(gl_.tri_tex, tri_rows, texels);
+    gl_.info_tex = make_texture(GL_RGBA32UI, rows_for(n));
+    glBindBuffer(GL_ARRAY_BUFFER, gl_.vertex_to_particle);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(topo_.vertex_to_particle.size() * 4), topo_.vertex_to_particle.data(),
+                 GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    record_ = 0;  // particle buffers are (re)made by sync_gpu for the model's record size
+    gl_ready_ = true;
+    state_dirty_ = targets_dirty_ = info_dirty_ = true;
+    return gl_error("creating GLES objects");
+}
+
+Result GlesCloth::sync_gpu() {
+    const uint32_t n = topo_.particle_count;
+    const uint32_t want = record_vec4();
+    if (want != record_) {
+        if (gpu_newer_ && record_ != 0)
+            if (Result r = pull(); !r.ok()) return r;
+        glDeleteBuffers(3, gl_.buffers);
+        glDeleteTextures(3, gl_.textures);
+        record_ = want;
+        tex_rows_ = rows_for(uint64_t(n) * record_);
+        const GLsizeiptr bytes = GLsizeiptr(tex_rows_) * kTexWidth * 16;
+        glGenBuffers(3, gl_.buffers);
+        for (int b = 0; b < 3; ++b) {
+            glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[b]);
+            glBufferData(GL_ARRAY_BUFFER, bytes, nullptr, GL_DYNAMIC_COPY);
+            gl_.textures[b] = make_texture(GL_RGBA32F, tex_rows_);
+        }
+        glBindBuffer(GL_ARRAY_BUFFER, gl_.kstart);
+        glBufferData(GL_ARRAY_BUFFER, bytes, nullptr, GL_DYNAMIC_COPY);
+        glBindBuffer(GL_ARRAY_BUFFER, 0);
+        state_dirty_ = true;
+    }
+    if (state_dirty_) push_state();
+    if (targets_dirty_) {
+        glBindBuffer(GL_ARRAY_BUFFER, gl_.targets);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n * sizeof(glm::vec3)), kinematic_target_.data(), GL_DYNAMIC_DRAW);
+        glBindBuffer(GL_ARRAY_BUFFER, 0);
+        targets_dirty_ = false;
+    }
+    if (info_dirty_) {
+        std::vector<uint32_t> texels(size_t(n) * 4, 0u);
+        std::vector<uint32_t> incident(n, 0);
+        for (uint32_t p : topo_.triangles) ++incident[p];
+        for (uint32_t i = 0; i < n; ++i) {
+            texels[4 * i] = topo_.nbr.count[i];
+            texels[4 * i + 1] = active_count_[i];
+            texels[4 * i + 2] = incident[i];
+        }
+        upload_uint_texture(gl_.info_tex, rows_for(n), texels);
+        info_dirty_ = false;
+    }
+    return gl_error("uploading cloth state");
+}
+
+void GlesCloth::push_state() {
+    const uint32_t n = topo_.particle_count;
+    std::vector<Particle> records(size_t(n) * record_, Particle(0.0f));
+    const int sources[2] = {cur_, prev_};
+    for (int k = 0; k < 2; ++k) {
+        for (uint32_t i = 0; i < n; ++i) records[size_t(i) * record_] = buffers_[sources[k]][i];
+        glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[g_[k]]);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(records.size() * sizeof(Particle)), records.data());
+        refresh_texture(g_[k]);
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    state_dirty_ = false;
+    gpu_newer_ = false;
+}
+
+void GlesCloth::refresh_texture(int b) {
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, gl_.buffers[b]);
+    glActiveTexture(GL_TEXTURE0 + kRefreshUnit);
+    glBindTexture(GL_TEXTURE_2D, gl_.textures[b]);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTexWidth, GLsizei(tex_rows_), GL_RGBA, GL_FLOAT, nullptr);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+}
+
+Result GlesCloth::pull() {
+    if (!gpu_newer_) return {};
+    std::string why;
+    if (!context_current(&why))
+        return {DRAPE_ERROR_BACKEND_UNAVAILABLE, "reading a GLES cloth back needs its GL context: " + why};
+    const uint32_t n = topo_.particle_count;
+    const int targets[2] = {cur_, prev_};
+    GLint bound = 0;
+    glGetIntegerv(GL_COPY_READ_BUFFER_BINDING, &bound);
+    for (int k = 0; k < 2; ++k) {
+        glBindBuffer(GL_COPY_READ_BUFFER, gl_.buffers[g_[k]]);
+        const auto* src = static_cast<const Particle*>(
+            glMapBufferRange(GL_COPY_READ_BUFFER, 0, GLsizeiptr(size_t(n) * record_ * sizeof(Particle)), GL_MAP_READ_BIT));
+        if (!src) {
+            Result r = gl_error("glMapBufferRange (readback)");
+            glBindBuffer(GL_COPY_READ_BUFFER, GLuint(bound));
+            return r.ok() ? Result{DRAPE_ERROR_GL, "glMapBufferRange returned NULL (readback)"} : r;
+        }
+        for (uint32_t i = 0; i < n; ++i) buffers_[targets[k]][i] = src[size_t(i) * record_];
+        glUnmapBuffer(GL_COPY_READ_BUFFER);
+    }
+    glBindBuffer(GL_COPY_READ_BUFFER, GLuint(bound));
+    gpu_newer_ = false;
+    compute_cpu_stats();
+    return gl_error("reading back");
+}
+
+void GlesCloth::compute_cpu_stats() {
+    // The verify pass of Cloth::step, on the read-back copy (the GPU step has no verify pass).
+    const Particle* x = buffers_[cur_].data();
+    const NeighbourTable& nb = topo_.nbr;
+    bool finite = true;
+    float max_strain = 0;
+    double sum_sq = 0;
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < topo_.particle_count; ++i) {
+        if (!(std::isfinite(x[i].x) && std::isfinite(x[i].y) && std::isfinite(x[i].z))) finite = false;
+        const size_t row = size_t(i) * nb.slots;
+        for (uint32_t s = 0; s < nb.count[i]; ++s) {
+            const uint32_t j = nb.index[row + s];
+            const uint8_t g = nb.group[row + s];
+            if (j < i || !(params_.stiffness[g] > 0) || !(nb.rest[row + s] > 0) || g == DRAPE_GROUP_BEND) continue;
+            const float strain = glm::length(glm::vec3(x[i]) - glm::vec3(x[j])) / nb.rest[row + s] - 1.0f;
+            max_strain = std::max(max_strain, std::fabs(strain));
+            sum_sq += double(strain) * strain;
+            ++count;
+        }
+    }
+    stats_.non_finite = finite ? 0 : 1;
+    stats_.max_strain = max_strain;
+    stats_.rms_strain = count ? float(std::sqrt(sum_sq / count)) : 0.0f;
+}
+
+std::string GlesCloth::variant_defines(int pass) const {
+    const bool xpbd = params_.model == DRAPE_MODEL_XPBD;
+    std::string d;
+    if (pass == kMassSpring) d += "#define DRAPE_PASS_MASS_SPRING 1\n";
+    if (pass == kPredict) d += "#define DRAPE_PASS_PREDICT 1\n";
+    if (pass == kConstraint || pass == kCommit) d += "#define DRAPE_PASS_CONSTRAINT 1\n";
+    if (pass == kCommit) d += "#define DRAPE_COMMIT 1\n";
+    if (pass == kPredict && params_.model == DRAPE_MODEL_PBD && params_.damping > 0) d += "#define DRAPE_DASHPOT 1\n";
+    if (xpbd) d += "#define DRAPE_XPBD 1\n";
+    if (pass < kConstraint && !kinematic_.empty()) d += "#define DRAPE_KINEMATIC 1\n";
+    d += "#define DRAPE_SLOTS " + std::to_string(topo_.nbr.slots) + "\n";
+    d += "#define DRAPE_RECORD " + std::to_string(record_vec4()) + "\n";
+    d += "#define DRAPE_LAMBDA_VEC4 " + std::to_string(xpbd ? record_vec4() - 1 : 1) + "\n";
+    return d;
+}
+
+Result GlesCloth::program(int pass, Program** out) {
+    const std::string defines = variant_defines(pass);
+    auto it = programs_.find(defines);
+    if (it == programs_.end()) {
+        std::vector<std::string> varyings{"v_x"};
+        const bool xpbd = params_.model == DRAPE_MODEL_XPBD && pass != kMassSpring;
+        if (xpbd)
+            for (uint32_t k = 0; k + 1 < record_vec4(); ++k) varyings.push_back("v_lambda" + std::to_string(k));
+        std::vector<std::pair<GLuint, const char*>> attribs{{aX, "a_x"}, {aAux, "a_aux"}, {aKStart, "a_kstart"},
+                                                            {aKTarget, "a_ktarget"}};
+        static const char* const lambda_names[kMaxLambdaVec4] = {"a_lambda0", "a_lambda1", "a_lambda2", "a_lambda3",
+                                                                 "a_lambda4", "a_lambda5", "a_lambda6", "a_lambda7"};
+        for (uint32_t k = 0; k < kMaxLambdaVec4; ++k) attribs.push_back({aLambda0 + k, lambda_names[k]});
+        Program p;
+        if (Result r = link(with_defines(shaders::sim_vert, defines), "sim.vert.glsl", varyings, attribs, &p.id); !r.ok())
+            return r;
+        for (int u = 0; u < kUniformCount; ++u) p.u[u] = glGetUniformLocation(p.id, kUniformNames[u]);
+        gl_.programs.push_back(p.id);
+        it = programs_.emplace(defines, p).first;
+    }
+    *out = &it->second;
+    return {};
+}
+
+Result GlesCloth::output_program(Program** out) {
+    std::string d = "#define DRAPE_RECORD " + std::to_string(record_) + "\n";
+    d += "#define DRAPE_TRI_SLOTS " + std::to_string(tri_slots_) + "\n";
+    if (out_layout_.position_offset >= 0) d += "#define DRAPE_WRITE_POSITION 1\n";
+    if (out_layout_.normal_offset >= 0) d += "#define DRAPE_WRITE_NORMAL 1\n";
+    std::string decls, copies;
+    for (size_t k = 0; k < keeps_.size(); ++k) {
+        const std::string type = keeps_[k].second == 1 ? "uint" : "uvec" + std::to_string(keeps_[k].second);
+        decls += "in " + type + " a_keep" + std::to_string(k) + "; flat out " + type + " v_keep" + std::to_string(k) + "; ";
+        copies += "v_keep" + std::to_string(k) + " = a_keep" + std::to_string(k) + "; ";
+    }
+    if (!keeps_.empty()) d += "#define DRAPE_KEEP_DECLS " + decls + "\n#define DRAPE_KEEP_COPY " + copies + "\n";
+    const std::string key = "output\n" + d;
+    auto it = programs_.find(key);
+    if (it == programs_.end()) {
+        // Varyings in byte order of the record: every word of the stride is written.
+        std::vector<std::string> varyings;
+        const int words = int(out_layout_.stride / 4);
+        size_t keep = 0;
+        for (int w = 0; w < words;) {
+            if (out_layout_.position_offset >= 0 && w == out_layout_.position_offset / 4) {
+                varyings.push_back("v_position");
+                w += 3;
+            } else if (out_layout_.normal_offset >= 0 && w == out_layout_.normal_offset / 4) {
+                varyings.push_back("v_normal");
+                w += 3;
+            } else {
+                varyings.push_back("v_keep" + std::to_string(keep));
+                w += keeps_[keep++].second;
+            }
+        }
+        std::vector<std::string> keep_names;
+        for (size_t k = 0; k < keeps_.size(); ++k) keep_names.push_back("a_keep" + std::to_string(k));
+        std::vector<std::pair<GLuint, const char*>> attribs{{aParticle, "a_particle"}};
+        for (size_t k = 0; k < keeps_.size(); ++k) attribs.push_back({GLuint(aKeep0 + k), keep_names[k].c_str()});
+        Program p;
+        if (Result r = link(with_defines(shaders::output_vert, d), "output.vert.glsl", varyings, attribs, &p.id); !r.ok())
+            return r;
+        for (int u = 0; u < kUniformCount; ++u) p.u[u] = glGetUniformLocation(p.id, kUniformNames[u]);
+        gl_.programs.push_back(p.id);
+        it = programs_.emplace(key, p).first;
+    }
+    *out = &it->second;
+    return {};
+}
+
+void GlesCloth::run_pass(Program& p, int x, int aux, int out, bool constraint, float along, const float* sub) {
+    const uint32_t n = topo_.particle_count;
+    const GLsizei stride = GLsizei(record_ * sizeof(Particle));
+    glUseProgram(p.id);
+    glUniform1i(p.u[uX], 0);
+    glUniform1i(p.u[uAux], 1);
+    glUniform1i(p.u[uNbr], 2);
+    glUniform1i(p.u[uInfo], 3);
+    glUniform1i(p.u[uTexWidth], GLint(kTexWidth));
+    glUniform1fv(p.u[uStiffness], 3, sub + 0);
+    glUniform1fv(p.u[uCompliance], 3, sub + 3);
+    glUniform1fv(p.u[uDampingRatio], 3, sub + 6);
+    const GLint active[3] = {sub[0] > 0, sub[1] > 0, sub[2] > 0};
+    glUniform1iv(p.u[uActive], 3, active);
+    glUniform3fv(p.u[uGravity], 1, params_.gravity);
+    glUniform3fv(p.u[uWind], 1, params_.wind);
+    glUniform1f(p.u[uAirDrag], params_.air_drag);
+    glUniform1f(p.u[uDamping], params_.damping);
+    glUniform1f(p.u[uH], sub[9]);
+    glUniform1f(p.u[uInvHp], sub[10]);
+    glUniform1f(p.u[uHRatio], sub[12]);
+    glUniform1f(p.u[uAccelH], sub[11]);
+    glUniform1f(p.u[uCoupling], kJacobiCoupling);
+    glUniform1f(p.u[uAlong], along);
+
+    glBindVertexArray(gl_.vao);
+    for (int a = 0; a < kMaxAttribs; ++a) glDisableVertexAttribArray(GLuint(a));
+    glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[x]);
+    glEnableVertexAttribArray(aX);
+    glVertexAttribPointer(aX, 4, GL_FLOAT, GL_FALSE, stride, nullptr);
+    if (constraint && record_ > 1)
+        for (uint32_t k = 0; k + 1 < record_; ++k) {
+            glEnableVertexAttribArray(aLambda0 + k);
+            glVertexAttribPointer(aLambda0 + k, 4, GL_FLOAT, GL_FALSE, stride,
+                                  reinterpret_cast<const void*>(size_t(16) * (k + 1)));
+        }
+    glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[aux]);
+    glEnableVertexAttribArray(aAux);
+    glVertexAttribPointer(aAux, 4, GL_FLOAT, GL_FALSE, stride, nullptr);
+    if (!constraint && !kinematic_.empty()) {
+        glBindBuffer(GL_ARRAY_BUFFER, gl_.kstart);
+        glEnableVertexAttribArray(aKStart);
+        glVertexAttribPointer(aKStart, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
+        glBindBuffer(GL_ARRAY_BUFFER, gl_.targets);
+        glEnableVertexAttribArray(aKTarget);
+        glVertexAttribPointer(aKTarget, 3, GL_FLOAT, GL_FALSE, 12, nullptr);
+    }
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, gl_.textures[x]);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, gl_.textures[aux]);
+    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[out], 0, GLsizeiptr(size_t(n) * stride));
+    glBeginTransformFeedback(GL_POINTS);
+    glDrawArrays(GL_POINTS, 0, GLsizei(n));
+    glEndTransformFeedback();
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    refresh_texture(out);
+}
+
+Result GlesCloth::step(float dt) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (mode_ == Mode::RenderThread) {
+        Result r = deferred_error_;
+        deferred_error_ = {};
+        if (pending_.size() >= 256)
+            return {DRAPE_ERROR_BACKEND_UNAVAILABLE,
+                    "256 GLES steps are waiting for the render thread: issue the Drape render event every frame"};
+        Op op;
+        op.dt = dt;
+        pending_.push_back(std::move(op));
+        return r;
+    }
+    return gpu_step(dt);
+}
+
+Result GlesCloth::gpu_step(float dt) {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (Result r = ensure_gl(); !r.ok()) return r;
+    std::string why;
+    if (!context_current(&why)) return {DRAPE_ERROR_BACKEND_UNAVAILABLE, "GLES step: " + why};
+    drain_gl_errors();
+    StateGuard guard;
+    if (Result r = sync_gpu(); !r.ok()) return r;
+    if (out_buffer_) {
+        // The caller may have deleted or resized the buffer since: refuse before stepping.
+        if (!glIsBuffer(out_buffer_))
+            return {DRAPE_ERROR_GL, "output GL buffer " + std::to_string(out_buffer_) + " no longer exists"};
+        GLint size = 0;
+        glBindBuffer(GL_ARRAY_BUFFER, out_buffer_);
+        glGetBufferParameteriv(GL_ARRAY_BUFFER, GL_BUFFER_SIZE, &size);
+        glBindBuffer(GL_ARRAY_BUFFER, 0);
+        const uint64_t need = uint64_t(topo_.vertex_count) * out_layout_.stride;
+        if (uint64_t(size) < need)
+            return {DRAPE_ERROR_BUFFER_TOO_SMALL, "output GL buffer holds " + std::to_string(size) +
+                                                      " bytes, the layout needs " + std::to_string(need)};
+    }
+    const drape_model model = drape_model(params_.model);
+    const int first = model == DRAPE_MODEL_MASS_SPRING ? kMassSpring : kPredict;
+    Program *p_first = nullptr, *p_constraint = nullptr, *p_commit = nullptr;
+    if (Result r = program(first, &p_first); !r.ok()) return r;
+    if (first == kPredict) {
+        if (Result r = program(kConstraint, &p_constraint); !r.ok()) return r;
+        if (Result r = program(kCommit, &p_commit); !r.ok()) return r;
+    }
+
+    bind_framebuffer();
+    glEnable(GL_RASTERIZER_DISCARD);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, gl_.nbr_tex);
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_2D, gl_.info_tex);
+
+    const uint32_t substeps = substeps_for(dt);
+    const float h = dt / float(substeps);
+    const uint32_t n = topo_.particle_count;
+    if (!kinematic_.empty()) {
+        // Kinematic particles move from where they are now (GPU copy, no readback).
+        glBindBuffer(GL_COPY_READ_BUFFER, gl_.buffers[g_[0]]);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, gl_.kstart);
+        glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0,
+                            GLsizeiptr(size_t(n) * record_ * sizeof(Particle)));
+    }
+    // sub: stiffness[3], compliance[3], damping_ratio[3], h, 1/h_prev, accel_h, h/h_prev
+    // (computed on the CPU exactly as Cloth::step does, so the shader sees the same bits).
+    float sub[13];
+    for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) {
+        const float k = params_.stiffness[g];
+        sub[g] = k;
+        sub[3 + g] = k > 0 ? 1.0f / (k * h * h) : 0.0f;
+        sub[6 + g] = k > 0 ? params_.damping / (k * h) : 0.0f;
+    }
+    sub[9] = h;
+    int& cur = g_[0];
+    int& prev = g_[1];
+    int& spare = g_[2];
+    for (uint32_t s = 0; s < substeps; ++s) {
+        sub[10] = 1.0f / h_prev_;
+        sub[11] = fresh_ ? 0.5f * h : 0.5f * (h + h_prev_);
+        sub[12] = h / h_prev_;
+        const float along = float(s + 1) / float(substeps);
+        if (model == DRAPE_MODEL_MASS_SPRING) {
+            run_pass(*p_first, cur, prev, spare, false, along, sub);
+            std::swap(prev, cur);
+            std::swap(cur, spare);
+        } else {
+            run_pass(*p_first, cur, prev, spare, false, along, sub);
+            int in = spare, out = prev;
+            // Displacements iterate spare <-> prev; the last iteration commits positions.
+            for (uint32_t it = 0; it < params_.iterations; ++it) {
+                run_pass(it + 1 == params_.iterations ? *p_commit : *p_constraint, in, cur, out, true, along, sub);
+                std::swap(in, out);
+            }
+            const int result = in, other = in == spare ? prev : spare;
+            prev = cur;
+            cur = result;
+            spare = other;
+        }
+        h_prev_ = h;
+        fresh_ = false;
+    }
+    gpu_newer_ = true;
+    Result r = write_output();
+    stats_.substeps = substeps;
+    stats_.iterations = model == DRAPE_MODEL_MASS_SPRING ? 1 : params_.iterations;
+    stats_.step_ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (!r.ok()) return r;
+    return gl_error("GLES step");
+}
+
+void GlesCloth::bind_framebuffer() {
+    if (glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE) return;
+    // No usable framebuffer (headless, no surface): draws fail even with rasterizer discard.
+    if (!gl_.fbo) {
+        GLint rb = 0;
+        glGetIntegerv(GL_RENDERBUFFER_BINDING, &rb);
+        glGenRenderbuffers(1, &gl_.rbo);
+        glBindRenderbuffer(GL_RENDERBUFFER, gl_.rbo);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 1, 1);
+        glBindRenderbuffer(GL_RENDERBUFFER, GLuint(rb));
+        glGenFramebuffers(1, &gl_.fbo);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl_.fbo);
+        glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, gl_.rbo);
+    }
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl_.fbo);
+}
+
+Result GlesCloth::write_output() {
+    if (!out_buffer_) return {};
+    bind_framebuffer();
+    Program* p = nullptr;
+    if (Result r = output_program(&p); !r.ok()) return r;
+    const uint32_t count = topo_.vertex_count;
+    const GLsizeiptr bytes = GLsizeiptr(uint64_t(count) * out_layout_.stride);
+    if (!keeps_.empty()) {
+        // Bytes this pass does not own are copied through from a GPU-side copy of the buffer.
+        glBindBuffer(GL_COPY_READ_BUFFER, out_buffer_);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, gl_.scratch);
+        glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, bytes);
+    }
+    glEnable(GL_RASTERIZER_DISCARD);
+    glUseProgram(p->id);
+    glUniform1i(p->u[uX], 0);
+    glUniform1i(p->u[uInfo], 3);
+    glUniform1i(p->u[uTris], 4);
+    glUniform1i(p->u[uTexWidth], GLint(kTexWidth));
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, gl_.textures[g_[0]]);
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_2D, gl_.info_tex);
+    glActiveTexture(GL_TEXTURE4);
+    glBindTexture(GL_TEXTURE_2D, gl_.tri_tex);
+    glBindVertexArray(gl_.vao);
+    for (int a = 0; a < kMaxAttribs; ++a) glDisableVertexAttribArray(GLuint(a));
+    glBindBuffer(GL_ARRAY_BUFFER, gl_.vertex_to_particle);
+    glEnableVertexAttribArray(aParticle);
+    glVertexAttribIPointer(aParticle, 1, GL_UNSIGNED_INT, 4, nullptr);
+    if (!keeps_.empty()) {
+        glBindBuffer(GL_ARRAY_BUFFER, gl_.scratch);
+        for (size_t k = 0; k < keeps_.size(); ++k) {
+            glEnableVertexAttribArray(GLuint(aKeep0 + k));
+            glVertexAttribIPointer(GLuint(aKeep0 + k), keeps_[k].second, GL_UNSIGNED_INT, GLsizei(out_layout_.stride),
+                                   reinterpret_cast<const void*>(size_t(keeps_[k].first) * 4));
+        }
+    }
+    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, out_buffer_, 0, bytes);
+    glBeginTransformFeedback(GL_POINTS);
+    glDrawArrays(GL_POINTS, 0, GLsizei(count));
+    glEndTransformFeedback();
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    for (int a = 0; a < kMaxAttribs; ++a) glDisableVertexAttribArray(GLuint(a));
+    return gl_error("writing the output buffer");
+}
+
+Result GlesCloth::set_output(GLuint buffer, const drape_vertex_layout& layout) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    // Which words of the record this pass does not own (copied through).
+    std::vector<std::pair<int, int>> keeps;
+    const int words = int(layout.stride / 4);
+    for (int w = 0; w < words;) {
+        if ((layout.position_offset >= 0 && w == layout.position_offset / 4) ||
+            (layout.normal_offset >= 0 && w == layout.normal_offset / 4)) {
+            w += 3;
+            continue;
+        }
+        const int start = w;
+        while (w < words && w - start < 4 && !(layout.position_offset >= 0 && w == layout.position_offset / 4) &&
+               !(layout.normal_offset >= 0 && w == layout.normal_offset / 4))
+            ++w;
+        keeps.push_back({start, w - start});
+    }
+    if (1 + keeps.size() > size_t(kMaxAttribs))
+        return {DRAPE_ERROR_INVALID_ARGUMENT, "layout has too many unrelated attributes to copy through (" +
+                                                  std::to_string(keeps.size()) + " chunks, at most 15)"};
+    if (layout.stride > 256)
+        return {DRAPE_ERROR_INVALID_ARGUMENT, "GLES output stride must be <= 256 bytes (ES 3.0 transform feedback)"};
+    auto apply = [this, buffer, layout, keeps]() -> Result {
+        if (buffer) {
+            if (!glIsBuffer(buffer))
+                return {DRAPE_ERROR_INVALID_ARGUMENT, "GL buffer " + std::to_string(buffer) + " does not exist"};
+            GLint bound = 0, size = 0;
+            glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &bound);
+            glBindBuffer(GL_ARRAY_BUFFER, buffer);
+            glGetBufferParameteriv(GL_ARRAY_BUFFER, GL_BUFFER_SIZE, &size);
+            glBindBuffer(GL_ARRAY_BUFFER, GLuint(bound));
+            const uint64_t need = uint64_t(topo_.vertex_count) * layout.stride;
+            if (uint64_t(size) < need)
+                return {DRAPE_ERROR_BUFFER_TOO_SMALL, "GL buffer " + std::to_string(buffer) + " holds " +
+                                                          std::to_string(size) + " bytes, the layout needs " +
+                                                          std::to_string(need)};
+            if (!keeps.empty()) {
+                if (!gl_.scratch) glGenBuffers(1, &gl_.scratch);
+                glBindBuffer(GL_COPY_WRITE_BUFFER, gl_.scratch);
+                glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(need), nullptr, GL_DYNAMIC_COPY);
+                glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+            }
+        }
+        out_buffer_ = buffer;
+        out_layout_ = layout;
+        keeps_ = keeps;
+        if (!buffer) return {};
+        StateGuard guard;
+        if (Result r = sync_gpu(); !r.ok()) return r;
+        return write_output();
+    };
+    if (mode_ == Mode::RenderThread) {
+        Op op;
+        op.edit = [apply, this](Cloth&) {
+            Result r = apply();
+            if (!r.ok()) deferred_error_ = r;
+        };
+        pending_.push_back(std::move(op));
+        return {};
+    }
+    if (Result r = ensure_gl(); !r.ok()) return r;
+    return apply();
+}
+
+Result GlesCloth::apply_edit(Access access, const std::function<void(Cloth&)>& fn) {
+    if (access == Access::ReadsState && gpu_newer_)
+        if (Result r = pull(); !r.ok()) return r;
+    fn(*this);
+    // The CPU copy is now the truth for positions (push), or only parameters/targets changed.
+    if (access != Access::NoState) state_dirty_ = true;
+    targets_dirty_ = info_dirty_ = true;
+    return {};
+}
+
+Result GlesCloth::edit(Access access, std::function<void(Cloth&)> fn) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (mode_ == Mode::RenderThread && (!pending_.empty() || (access == Access::ReadsState && gpu_newer_))) {
+        Op op;
+        op.edit = std::move(fn);
+        op.access = access;
+        pending_.push_back(std::move(op));
+        return {};
+    }
+    return apply_edit(access, fn);
+}
+
+Result GlesCloth::readback() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (mode_ == Mode::RenderThread) {
+        Op op;
+        op.readback = true;
+        pending_.push_back(std::move(op));
+        return {};
+    }
+    return pull();
+}
+
+Result GlesCloth::read_out(const drape_vertex_layout& layout, void* dst) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (gpu_newer_ && mode_ == Mode::Immediate)
+        if (Result r = pull(); !r.ok()) return r;
+    Cloth::read(layout, dst);
+    return {};
+}
+
+Result GlesCloth::stats_out(drape_stats* out) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (gpu_newer_ && mode_ == Mode::Immediate)
+        if (Result r = pull(); !r.ok()) return r;
+    Cloth::stats(out);
+    return {};
+}
+
+void GlesCloth::run_pending() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (pending_.empty() && gl_ready_) return;
+    if (Result r = ensure_gl(); !r.ok()) {
+        deferred_error_ = r;
+        return;
+    }
+    while (!pending_.empty()) {
+        Op op = std::move(pending_.front());
+        pending_.pop_front();
+        Result r;
+        if (op.dt > 0) {
+            r = gpu_step(op.dt);
+        } else if (op.readback) {
+            r = pull();
+        } else {
+            StateGuard guard;
+            r = apply_edit(op.access, op.edit);
+        }
+        if (!r.ok()) deferred_error_ = r;
+    }
+}
+
+void GlesCloth::drop_gl() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!gl_ready_) return;
+    pull();  // keep the latest state on the CPU; re-uploaded on the next device
+    delete_now(gl_);
+    programs_.clear();
+    gl_ready_ = false;
+    record_ = 0;
+    state_dirty_ = targets_dirty_ = info_dirty_ = true;
+}
+
+}  // namespace drape::gles

@@ -1,0 +1,140 @@
+// OpenGL ES 3.0 transform-feedback backend: a Cloth whose state lives in GL buffers.
+//
+// Data on the GPU (per cloth; W = kTexWidth texels per texture row):
+//   particle buffers x3 (ping-pong, roles rotate like Cloth's cur/prev/spare): records of R vec4s,
+//     R = 1 (xyz + inverse mass) or, for XPBD, 1 + ceil(slots/4) (record + lambdas per slot);
+//   one RGBA32F texture per particle buffer, refreshed on the GPU after every pass that writes the
+//     buffer (GL_PIXEL_UNPACK_BUFFER + glTexSubImage2D): neighbours are read with texelFetch;
+//   RGBA32UI textures: neighbour table (index, rest bits, group), particle info (count, active,
+//     triangles), incident triangles (normals);
+//   kinematic start (copied on the GPU at step start) and pin targets (uploaded when pins move).
+// Nothing is read back on the step path; pull() (explicit readback, get_stats, setters that need
+// the current state) maps the two state buffers once.
+//
+// Two modes. Immediate: a GL ES 3 context is current on the thread that creates and steps the
+// cloth (tests, samples). RenderThread (Unity): the main thread only records steps and edits; the
+// GL work runs when the Unity render event fires (render_thread_tick) on the render thread.
+#pragma once
+
+#include <GLES3/gl3.h>
+
+#include <deque>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "core/cloth.h"
+
+namespace drape::gles {
+
+/// True when an OpenGL ES >= 3.0 context is current on this thread; otherwise *why says why.
+bool context_current(std::string* why = nullptr);
+
+/// Unity GLES device state (set by the plug-in interface on the render thread).
+void set_render_thread_device(bool ready);
+bool render_thread_device_ready();
+/// Runs all recorded GL work of RenderThread cloths and frees released GL objects. Render thread.
+void render_thread_tick();
+/// Device shutdown: every RenderThread cloth keeps its state on the CPU and frees its GL objects.
+void render_thread_shutdown();
+
+/// GL objects of one cloth (names; 0 = none).
+struct GlObjects {
+    GLuint buffers[3] = {};
+    GLuint textures[3] = {};
+    GLuint nbr_tex = 0, info_tex = 0, tri_tex = 0;
+    GLuint kstart = 0, targets = 0, vertex_to_particle = 0, scratch = 0;
+    GLuint vao = 0, fbo = 0, rbo = 0;
+    std::vector<GLuint> programs;
+    void* context = nullptr;  ///< EGLContext they were made in
+    bool empty() const;
+};
+/// Deletes them now (context current) or when a context they belong to is next current.
+void release_gl(GlObjects& objects);
+
+class GlesCloth final : public Cloth {
+public:
+    enum class Mode { Immediate, RenderThread };
+    /// What a setter does to the particle state: reads it (pulled first if the GPU copy is newer,
+    /// pushed after), overwrites it (pushed after), or leaves it (parameters, pin targets).
+    enum class Access { ReadsState, WritesState, NoState };
+
+    GlesCloth(World& world, Topology topology, Mode mode);
+    ~GlesCloth() override;
+
+    Mode mode() const { return mode_; }
+    /// Immediate mode: creates GL objects and compiles the current variant (DRAPE_ERROR_GL + log).
+    Result init_gl();
+
+    /// Immediate: steps on the GPU now. RenderThread: records the step; returns an error the
+    /// render thread met since the last call (then cleared).
+    Result step(float dt) override;
+
+    /// Applies a setter now, or (RenderThread, when it must wait for GPU state) on the render thread.
+    Result edit(Access access, std::function<void(Cloth&)> fn);
+    /// Output target: GL buffer name (0 = none) with a layout already validated by the API.
+    Result set_output(GLuint buffer, const drape_vertex_layout& layout);
+    /// Explicit readback: copies the GPU state into the CPU copy (RenderThread: at the next event).
+    Result readback();
+    /// drape_cloth_read / get_stats: CPU copy, pulled first when stale (needs the context).
+    Result read_out(const drape_vertex_layout& layout, void* dst);
+    Result stats_out(drape_stats* out);
+
+    /// RenderThread: run the recorded work (render thread, context current).
+    void run_pending();
+    /// RenderThread: device lost; keep the state on the CPU.
+    void drop_gl();
+
+private:
+    struct Op {
+        float dt = 0;                          // > 0: a step
+        std::function<void(Cloth&)> edit;      // else an edit
+        Access access = Access::NoState;
+        bool readback = false;
+    };
+    struct Program {
+        GLuint id = 0;
+        GLint u[24] = {};
+    };
+
+    Result ensure_gl();
+    Result sync_gpu();
+    Result gpu_step(float dt);
+    Result apply_edit(Access access, const std::function<void(Cloth&)>& fn);
+    void bind_framebuffer();
+    Result pull();
+    void push_state();
+    void refresh_texture(int b);
+    Result program(int pass, Program** out);
+    Result output_program(Program** out);
+    void run_pass(Program& p, int x, int aux, int out, bool constraint, float along, const float* sub);
+    Result write_output();
+    void compute_cpu_stats();
+    uint32_t record_vec4() const;
+    std::string variant_defines(int pass) const;
+
+    const Mode mode_;
+    std::mutex mutex_;
+    std::deque<Op> pending_;
+    Result deferred_error_;
+
+    GlObjects gl_;
+    std::map<std::string, Program> programs_;
+    bool gl_ready_ = false;
+    int g_[3] = {0, 1, 2};  // GPU buffer roles: cur, prev, spare
+    uint32_t record_ = 1;   // R of the allocated buffers
+    uint32_t tex_rows_ = 0; // rows of the particle textures
+    uint32_t tri_slots_ = 1;
+    bool gpu_newer_ = false;       // CPU copy is stale
+    bool state_dirty_ = true;      // push CPU cur/prev
+    bool targets_dirty_ = true;
+    bool info_dirty_ = true;
+
+    GLuint out_buffer_ = 0;
+    drape_vertex_layout out_layout_{};
+    std::vector<std::pair<int, int>> keeps_;  // (first word, words) of passthrough chunks
+};
+
+}  // namespace drape::gles

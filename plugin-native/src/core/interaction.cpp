@@ -1,0 +1,380 @@
+// Cloth's interaction with the world and the user (issue 5): colliders, sleeping, touch drag
+// (paper eq. 9), pick-and-hold grabs and the owner transform. The C ABI (src/api) has validated
+// every input. The step hooks are called from Cloth::step (core/cloth.cpp).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "backend/cpu/collide.h"
+#include "core/cloth.h"
+#include "core/drag.h"
+
+namespace drape {
+namespace {
+
+glm::quat to_quat(const float q[4]) { return glm::normalize(glm::quat(q[3], q[0], q[1], q[2])); }
+
+/// Normalised lerp along the shorter arc: accurate enough across one frame's substeps.
+glm::quat nlerp(const glm::quat& a, glm::quat b, float t) {
+    if (glm::dot(a, b) < 0) b = -b;
+    return glm::normalize(a * (1.0f - t) + b * t);
+}
+
+struct Aabb {
+    glm::vec3 lo{INFINITY}, hi{-INFINITY};
+    void add(const glm::vec3& p) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    void add(const glm::vec3& p, float r) {
+        lo = glm::min(lo, p - r);
+        hi = glm::max(hi, p + r);
+    }
+    bool overlaps(const Aabb& o) const {
+        return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y && o.lo.y <= hi.y && lo.z <= o.hi.z && o.lo.z <= hi.z;
+    }
+};
+
+/// World bounds of a (non-plane) shape at one transform, grown by its margin.
+void add_shape_bounds(Aabb& b, const kernels::CollideShape& s, const glm::vec3& pos, const glm::quat& rot) {
+    if (s.shape == DRAPE_COLLIDER_SPHERE) {
+        b.add(pos, s.size.x + s.margin);
+    } else if (s.shape == DRAPE_COLLIDER_CAPSULE) {
+        const glm::vec3 axis = rot * glm::vec3(0, s.size.y, 0);
+        b.add(pos + axis, s.size.x + s.margin);
+        b.add(pos - axis, s.size.x + s.margin);
+    } else {  // box: |R| * half extents
+        const glm::mat3 r = glm::mat3_cast(rot);
+        const glm::vec3 e(std::fabs(r[0].x) * s.size.x + std::fabs(r[1].x) * s.size.y + std::fabs(r[2].x) * s.size.z,
+                          std::fabs(r[0].y) * s.size.x + std::fabs(r[1].y) * s.size.y + std::fabs(r[2].y) * s.size.z,
+                          std::fabs(r[0].z) * s.size.x + std::fabs(r[1].z) * s.size.y + std::fabs(r[2].z) * s.size.z);
+        b.lo = glm::min(b.lo, pos - e - s.margin);
+        b.hi = glm::max(b.hi, pos + e + s.margin);
+    }
+}
+
+/// Lowest signed height of the box's corners above a plane (normal n through point p).
+float lowest_above_plane(const Aabb& b, const glm::vec3& p, const glm::vec3& n) {
+    const glm::vec3 corner(n.x >= 0 ? b.lo.x : b.hi.x, n.y >= 0 ? b.lo.y : b.hi.y, n.z >= 0 ? b.lo.z : b.hi.z);
+    return glm::dot(corner - p, n);
+}
+
+}  // namespace
+
+// ---- colliders ------------------------------------------------------------------------------
+
+void Cloth::set_colliders(const drape_collider* colliders, uint32_t count) {
+    std::vector<ColliderState> next(count);
+    bool changed = count != ix_.colliders.size();
+    for (uint32_t k = 0; k < count; ++k) {
+        const drape_collider& in = colliders[k];
+        ColliderState& c = next[k];
+        c.id = in.id;
+        c.shape = in.shape;
+        c.size = glm::vec3(in.size[0], in.size[1], in.size[2]);
+        if (c.shape == DRAPE_COLLIDER_SPHERE) c.size.y = c.size.z = 0;
+        if (c.shape == DRAPE_COLLIDER_CAPSULE) c.size.z = 0;
+        if (c.shape == DRAPE_COLLIDER_PLANE) c.size = glm::vec3(0);
+        c.margin = in.margin;
+        c.friction = in.friction;
+        c.pos_end = glm::vec3(in.position[0], in.position[1], in.position[2]);
+        c.rot_end = to_quat(in.rotation);
+        c.pos_start = c.pos_end;
+        c.rot_start = c.rot_end;
+        const ColliderState* old = nullptr;
+        for (const ColliderState& o : ix_.colliders)
+            if (o.id == c.id) old = &o;
+        if (old) {  // moves from where it was at the last call (its current transform)
+            c.pos_start = old->pos_end;
+            c.rot_start = old->rot_end;
+            changed = changed || old->shape != c.shape || old->size != c.size || old->margin != c.margin ||
+                      old->friction != c.friction || old->pos_end != c.pos_end || old->rot_end != c.rot_end;
+        } else {
+            changed = true;
+        }
+    }
+    ix_.colliders.swap(next);
+    ix_.shapes.reserve(DRAPE_MAX_COLLIDERS);
+    if (changed) wake();
+}
+
+// ---- sleeping -------------------------------------------------------------------------------
+
+void Cloth::set_sleep(float threshold, float time) {
+    ix_.sleep_threshold = threshold;
+    ix_.sleep_time = time;
+    wake();
+}
+
+void Cloth::wake() {
+    ix_.asleep = false;
+    ix_.still_time = 0;
+    stats_.sleeping = 0;
+}
+
+bool Cloth::pins_change(const drape_pin* pins, uint32_t count) const {
+    for (uint32_t k = 0; k < count; ++k) {
+        const uint32_t i = topo_.vertex_to_particle[pins[k].vertex];
+        if (!pinned_[i] || kinematic_target_[i] != glm::vec3(pins[k].position[0], pins[k].position[1], pins[k].position[2]))
+            return true;
+    }
+    return false;
+}
+
+bool Cloth::skip_step_asleep() {
+    if (!ix_.asleep) return false;
+    // Asleep: no work at all; the state (and hence every output) stays bit-identical.
+    stats_.substeps = 0;
+    stats_.step_ms = 0;
+    stats_.sleeping = 1;
+    return true;
+}
+
+// ---- per-substep hook: drag, then colliders, on the committed positions ----------------------
+
+void Cloth::interaction_substep(uint32_t sub, uint32_t substeps) {
+    const uint32_t n = topo_.particle_count;
+    Particle* x = buffers_[cur_].data();
+    const Particle* start = buffers_[prev_].data();  // this substep's start
+
+    // Touch drag: the step's displacement in equal parts per substep (velocity = finger speed).
+    if (!ix_.drag_particles.empty()) {
+        const float part = 1.0f / float(substeps);
+        for (uint32_t i : ix_.drag_particles)
+            if (x[i].w != 0.0f) x[i] += Particle(ix_.drag_offset[i] * part, 0.0f);
+    }
+
+    if (ix_.colliders.empty()) return;
+    // Broad phase: colliders at this substep (host's previous -> new transform, interpolated)
+    // against the bounds of the cloth's substep start and end positions.
+    Aabb cloth;
+    for (uint32_t i = 0; i < n; ++i) {
+        cloth.add(glm::vec3(x[i]));
+        cloth.add(glm::vec3(start[i]));
+    }
+    const float t0 = float(sub) / float(substeps), t1 = float(sub + 1) / float(substeps);
+    ix_.shapes.clear();
+    for (const ColliderState& c : ix_.colliders) {
+        kernels::CollideShape s;
+        s.pos0 = c.pos_start + (c.pos_end - c.pos_start) * t0;
+        s.pos1 = sub + 1 == substeps ? c.pos_end : c.pos_start + (c.pos_end - c.pos_start) * t1;
+        s.rot0 = nlerp(c.rot_start, c.rot_end, t0);
+        s.rot1 = sub + 1 == substeps ? c.rot_end : nlerp(c.rot_start, c.rot_end, t1);
+        s.margin = c.margin;
+        s.friction = c.friction;
+        s.size = c.size;
+        s.shape = c.shape;
+        bool touches;
+        if (c.shape == DRAPE_COLLIDER_PLANE) {
+            touches = lowest_above_plane(cloth, s.pos0, s.rot0 * glm::vec3(0, 1, 0)) < s.margin ||
+                      lowest_above_plane(cloth, s.pos1, s.rot1 * glm::vec3(0, 1, 0)) < s.margin;
+        } else {
+            Aabb b;
+            add_shape_bounds(b, s, s.pos0, s.rot0);
+            add_shape_bounds(b, s, s.pos1, s.rot1);
+            touches = b.overlaps(cloth);
+        }
+        if (touches) ix_.shapes.push_back(s);
+    }
+    if (ix_.shapes.empty()) return;
+    ix_.collide_tests += uint64_t(n) * ix_.shapes.size();
+    const kernels::CollideShape* shapes = ix_.shapes.data();
+    const uint32_t count = uint32_t(ix_.shapes.size());
+    auto body = [&](uint32_t b, uint32_t e) { kernels::collide(shapes, count, start, x, b, e); };
+    if (backend_ == DRAPE_BACKEND_CPU_THREADED)
+        world_.pool().parallel_for(n, body);
+    else
+        body(0u, n);
+}
+
+void Cloth::interaction_end_step(float dt, bool rolled_back) {
+    for (ColliderState& c : ix_.colliders) {
+        c.pos_start = c.pos_end;
+        c.rot_start = c.rot_end;
+    }
+    for (uint32_t i : ix_.drag_particles) ix_.drag_marked[i] = 0;
+    ix_.drag_particles.clear();
+    stats_.sleeping = 0;
+    if (rolled_back || !(ix_.sleep_threshold > 0)) {
+        ix_.still_time = 0;
+        return;
+    }
+    // Fastest particle over the last substep.
+    const uint32_t n = topo_.particle_count;
+    const Particle* x = buffers_[cur_].data();
+    const Particle* p = buffers_[prev_].data();
+    const float limit = ix_.sleep_threshold * h_prev_;
+    const float limit2 = limit * limit;
+    bool still = true;
+    for (uint32_t i = 0; i < n && still; ++i) {
+        const glm::vec3 d = glm::vec3(x[i]) - glm::vec3(p[i]);
+        still = glm::dot(d, d) <= limit2;
+    }
+    if (!still) {
+        ix_.still_time = 0;
+        return;
+    }
+    ix_.still_time += dt;
+    if (ix_.still_time >= ix_.sleep_time) {
+        // Fall asleep at rest: velocities zeroed so that waking starts from rest.
+        Particle* pw = buffers_[prev_].data();
+        for (uint32_t i = 0; i < n; ++i) pw[i] = x[i];
+        ix_.asleep = true;
+        stats_.sleeping = 1;
+    }
+}
+
+// ---- touch drag and grabs ---------------------------------------------------------------------
+
+void Cloth::drag(const drape_view& view, const drape_touch* touches, uint32_t count) {
+    const uint32_t n = topo_.particle_count;
+    if (ix_.drag_offset.size() != n) {
+        ix_.drag_offset.assign(n, glm::vec3(0.0f));
+        ix_.drag_marked.assign(n, 0);
+        ix_.drag_particles.reserve(n);
+    }
+    const ScreenMapping m = make_screen_mapping(view);
+    const Particle* x = buffers_[cur_].data();
+    bool moved = false;
+    for (uint32_t i = 0; i < n; ++i) {
+        if (x[i].w == 0.0f) continue;
+        glm::dvec2 px;
+        double z;
+        if (!to_screen(m, glm::vec3(x[i]), &px, &z)) continue;
+        // Several touches: the screen displacements add up (each with its own falloff).
+        glm::dvec2 shift(0.0);
+        for (uint32_t k = 0; k < count; ++k) {
+            const glm::dvec2 d = px - glm::dvec2(touches[k].position[0], touches[k].position[1]);
+            const float c = touch_weight(float(glm::dot(d, d)), touches[k].amplitude, touches[k].sigma);
+            shift += double(c) * glm::dvec2(touches[k].motion[0], touches[k].motion[1]);
+        }
+        if (shift == glm::dvec2(0.0)) continue;
+        const glm::vec3 offset(from_screen(m, px + shift, z) - glm::dvec3(glm::vec3(x[i])));
+        if (!std::isfinite(offset.x) || !std::isfinite(offset.y) || !std::isfinite(offset.z)) continue;
+        if (!ix_.drag_marked[i]) {
+            ix_.drag_marked[i] = 1;
+            ix_.drag_offset[i] = glm::vec3(0.0f);
+            ix_.drag_particles.push_back(i);
+        }
+        ix_.drag_offset[i] += offset;
+        moved = true;
+    }
+    if (moved) wake();
+}
+
+uint32_t Cloth::grab(const drape_view& view, uint32_t touch_id, const float position[2], float pick_radius) {
+    grab_release(touch_id);
+    const ScreenMapping m = make_screen_mapping(view);
+    const Particle* x = buffers_[cur_].data();
+    const glm::dvec2 touch(position[0], position[1]);
+    double best = double(pick_radius) * pick_radius;
+    uint32_t best_vertex = std::numeric_limits<uint32_t>::max();
+    double best_z = 0;
+    for (uint32_t v = 0; v < topo_.vertex_count; ++v) {
+        const uint32_t i = topo_.vertex_to_particle[v];
+        if (x[i].w == 0.0f) continue;  // pinned or already grabbed
+        glm::dvec2 px;
+        double z;
+        if (!to_screen(m, glm::vec3(x[i]), &px, &z) || z < -1 || z > 1) continue;
+        const glm::dvec2 d = px - touch;
+        const double r2 = glm::dot(d, d);
+        if (r2 <= best) {
+            best = r2;
+            best_vertex = v;
+            best_z = z;
+        }
+    }
+    if (best_vertex == std::numeric_limits<uint32_t>::max()) return best_vertex;
+    const uint32_t i = topo_.vertex_to_particle[best_vertex];
+    ix_.grabs.push_back({touch_id, i, best_z});
+    pinned_[i] = 1;
+    kinematic_target_[i] = glm::vec3(x[i]);
+    refresh_derived();
+    wake();
+    return best_vertex;
+}
+
+bool Cloth::grab_move(const drape_view& view, uint32_t touch_id, const float position[2]) {
+    for (const Grab& g : ix_.grabs) {
+        if (g.touch_id != touch_id) continue;
+        const ScreenMapping m = make_screen_mapping(view);
+        const glm::vec3 target(from_screen(m, glm::dvec2(position[0], position[1]), g.ndc_z));
+        if (!std::isfinite(target.x) || !std::isfinite(target.y) || !std::isfinite(target.z)) return false;
+        if (!pinned_[g.particle]) {  // the host released the pin under the grab: hold it again
+            pinned_[g.particle] = 1;
+            refresh_derived();
+        }
+        if (target != kinematic_target_[g.particle]) wake();
+        kinematic_target_[g.particle] = target;
+        return true;
+    }
+    return false;
+}
+
+void Cloth::grab_release(uint32_t touch_id) {
+    for (size_t k = 0; k < ix_.grabs.size(); ++k) {
+        if (ix_.grabs[k].touch_id != touch_id) continue;
+        const uint32_t i = ix_.grabs[k].particle;
+        ix_.grabs.erase(ix_.grabs.begin() + long(k));
+        pinned_[i] = 0;
+        kinematic_target_[i] = glm::vec3(buffers_[cur_][i]);
+        refresh_derived();
+        wake();
+        return;
+    }
+}
+
+// ---- owner transform --------------------------------------------------------------------------
+
+void Cloth::set_owner(const drape_owner& o) {
+    const glm::vec3 pos(o.position[0], o.position[1], o.position[2]);
+    const glm::quat rot = to_quat(o.rotation);
+    if (!ix_.has_owner) {
+        ix_.has_owner = true;
+        ix_.owner_pos = pos;
+        ix_.owner_rot = rot;
+        return;
+    }
+    if (pos == ix_.owner_pos && rot == ix_.owner_rot) return;
+    const glm::vec3 p_old = ix_.owner_pos;
+    glm::quat dq = glm::normalize(rot * glm::conjugate(ix_.owner_rot));
+    if (dq.w < 0) dq = -dq;
+    ix_.owner_pos = pos;
+    ix_.owner_rot = rot;
+    const uint32_t n = topo_.particle_count;
+    Particle* cur = buffers_[cur_].data();
+    Particle* prev = buffers_[prev_].data();
+    auto full = [&](const glm::vec3& x) { return dq * (x - p_old) + pos; };
+    if (glm::length(pos - p_old) > o.teleport_distance) {
+        // Teleport: the whole cloth (and its pins) jumps rigidly with the owner, at rest.
+        for (uint32_t i = 0; i < n; ++i) {
+            cur[i] = Particle(full(glm::vec3(cur[i])), cur[i].w);
+            prev[i] = cur[i];
+            kinematic_target_[i] = full(kinematic_target_[i]);
+        }
+        fresh_ = true;
+        wake();
+        return;
+    }
+    // Carried part (1 - inertia) of the motion: applied to every particle's current and previous
+    // position, so it adds no velocity. Kinematic targets take the full motion; pins then cover the
+    // rest (inertia) over the next step's substeps, dragging the free cloth behind them.
+    const glm::quat carry_rot = glm::slerp(glm::quat(1, 0, 0, 0), dq, 1.0f - o.angular_inertia);
+    const glm::vec3 carry_move = (pos - p_old) * (1.0f - o.linear_inertia);
+    auto carried = [&](const glm::vec3& x) { return carry_rot * (x - p_old) + p_old + carry_move; };
+    if (o.linear_inertia < 1 || o.angular_inertia < 1) {
+        for (uint32_t i = 0; i < n; ++i) {
+            cur[i] = Particle(carried(glm::vec3(cur[i])), cur[i].w);
+            prev[i] = Particle(carried(glm::vec3(prev[i])), prev[i].w);
+        }
+    }
+    for (uint32_t k : kinematic_) kinematic_target_[k] = full(kinematic_target_[k]);
+    wake();
+}
+
+}  // namespace drape

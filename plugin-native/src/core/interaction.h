@@ -1,0 +1,60 @@
+// Run-time state of what a cloth interacts with (issue 5): colliders, touch drag, grabs, the
+// owner transform, and sleeping. Owned by Cloth (member ix_); the Cloth member functions that use
+// it are defined in core/interaction.cpp, and Cloth::step calls three small hooks:
+//   skip_step_asleep() at the top, interaction_substep() after each substep's solve (on the
+//   committed positions), interaction_end_step() when the step is done.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/vec3.hpp>
+
+#include "backend/cpu/collide.h"
+#include "drape/drape.h"
+
+namespace drape {
+
+/// A collider as the host gave it, plus where it was at the start of the current step.
+struct ColliderState {
+    uint32_t id, shape;
+    glm::vec3 size;
+    float margin, friction;
+    glm::vec3 pos_start, pos_end;  ///< m
+    glm::quat rot_start, rot_end;  ///< unit
+};
+
+struct Grab {
+    uint32_t touch_id;
+    uint32_t particle;
+    double ndc_z;  ///< depth the vertex was grabbed at
+};
+
+struct Interaction {
+    // Colliders (drape_cloth_set_colliders). `shapes` is the per-substep list after the broad
+    // phase (capacity DRAPE_MAX_COLLIDERS, kept: no allocation in step).
+    std::vector<ColliderState> colliders;
+    std::vector<kernels::CollideShape> shapes;
+
+    // Touch drag: displacement per affected particle for the next step, spread over its substeps.
+    std::vector<uint32_t> drag_particles;
+    std::vector<glm::vec3> drag_offset;  ///< per particle (only entries in drag_particles used)
+    std::vector<uint8_t> drag_marked;    ///< per particle: listed in drag_particles
+
+    std::vector<Grab> grabs;
+
+    // Owner transform.
+    bool has_owner = false;
+    glm::vec3 owner_pos{0.0f};
+    glm::quat owner_rot{1.0f, 0.0f, 0.0f, 0.0f};
+
+    // Sleeping.
+    float sleep_threshold = 0;  ///< m/s; 0 = never
+    float sleep_time = 1;       ///< s
+    float still_time = 0;       ///< s of steps below the threshold so far
+    bool asleep = false;
+    uint64_t collide_tests = 0; ///< particle-collider narrow-phase tests (diagnostics, tests)
+};
+
+}  // namespace drape
