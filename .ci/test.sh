@@ -3,3 +3,6 @@
 set -euo pipefail
 bash .ci/build.sh release
 ctest --preset release
+
+# C#: package checks, Unity compile checks, NUnit tests of Drape.Core (issue 4).
+bash .ci/dotnet-test.sh

@@ -88,6 +88,7 @@ static const probe_entry k_entries[] = {
     FIELD(drape_stats, elastic_energy),
     FIELD(drape_stats, non_finite),
     FIELD(drape_stats, unstable_steps),
+    FIELD(drape_stats, sleeping),
 
     ENUM(DRAPE_OK),
     ENUM(DRAPE_ERROR_NULL_POINTER),

@@ -212,7 +212,9 @@ namespace Drape.Core
         {
             lock (_sync)
             {
-                Status s = NativeMethods.drape_cloth_get_stats(_handle, out Stats stats);
+                // drape_cloth_get_stats honours out_stats->struct_size (the struct grew after ABI 1).
+                var stats = new Stats { StructSize = SizeOf.Stats };
+                Status s = NativeMethods.drape_cloth_get_stats(_handle, ref stats);
                 if (s != Status.Ok) NativeMethods.Check(s, "drape_cloth_get_stats");
                 return stats;
             }

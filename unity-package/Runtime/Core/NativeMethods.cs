@@ -82,7 +82,7 @@ namespace Drape.Core
         internal static extern Status drape_cloth_get_info(ClothHandle cloth, out ClothInfo info);
 
         [DllImport(Library, CallingConvention = Cdecl)]
-        internal static extern Status drape_cloth_get_stats(ClothHandle cloth, out Stats stats);
+        internal static extern Status drape_cloth_get_stats(ClothHandle cloth, ref Stats stats);
 
         /// <summary>The native message for the last failure on this thread ("" if none).</summary>
         internal static string LastError()

@@ -126,7 +126,7 @@ namespace Drape.Core
         /// <summary>Per group. MassSpring, Xpbd: N/m per spring (0 = group off); Pbd: fraction in
         /// [0,1] per iteration. Default 2000, 1000, 200.</summary>
         public GroupValues Stiffness;
-        /// <summary>N*s/m along each spring (eq. 2; Xpbd: constraint damping). Default 0.5.</summary>
+        /// <summary>N*s/m along each spring (eq. 2; Xpbd: constraint damping). Default 0.05.</summary>
         public float Damping;
         /// <summary>m/s^2. Default (0,-9.81,0).</summary>
         public Float3 Gravity;
@@ -215,6 +215,8 @@ namespace Drape.Core
         public uint NonFinite;
         /// <summary>Steps rolled back since creation.</summary>
         public uint UnstableSteps;
+        /// <summary>1 if the cloth is asleep (drape_sleep_desc): steps do no work.</summary>
+        public uint Sleeping;
     }
 
     /// <summary>struct_size values (sizeof the C twin on this platform).</summary>

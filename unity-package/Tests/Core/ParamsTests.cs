@@ -8,7 +8,7 @@ namespace Drape.Tests
         [Test]
         public void DefaultsAreTheDocumentedOnes()
         {
-            // drape.h: XPBD, stiffness 2000/1000/200, damping 0.5, gravity (0,-9.81,0), wind 0,
+            // drape.h: XPBD, stiffness 2000/1000/200, damping 0.05, gravity (0,-9.81,0), wind 0,
             // air drag 0.1, 4 iterations.
             Params p = World.DefaultParams();
             Assert.That(p.StructSize, Is.EqualTo(SizeOf.Params));
@@ -16,7 +16,7 @@ namespace Drape.Tests
             Assert.That(p.Stiffness.Structural, Is.EqualTo(2000f));
             Assert.That(p.Stiffness.Shear, Is.EqualTo(1000f));
             Assert.That(p.Stiffness.Bend, Is.EqualTo(200f));
-            Assert.That(p.Damping, Is.EqualTo(0.5f));
+            Assert.That(p.Damping, Is.EqualTo(0.05f));
             Assert.That(p.Gravity, Is.EqualTo(new Float3(0f, -9.81f, 0f)));
             Assert.That(p.Wind, Is.EqualTo(new Float3(0f, 0f, 0f)));
             Assert.That(p.AirDrag, Is.EqualTo(0.1f));

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# `npm run pack`: builds the native library, stages the Unity package with its binaries and their
+# .meta import settings (templates in unity-package/Plugins~/meta), checks the staged .meta files,
+# and writes build/com.drape.cloth-<version>.tgz for Unity's "Add package from tarball...".
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash .ci/build.sh release
+
+stage=build/unity-package-stage/package
+rm -rf build/unity-package-stage
+mkdir -p "$stage"
+cp -a unity-package/. "$stage/"
+rm -rf "$stage/Plugins~"
+
+# Binaries built here, each with its folder metas and import settings.
+add_plugin() { # <built file> <path inside the package>
+  local built=$1 dest=$2 templates=unity-package/Plugins~/meta
+  [ -f "$built" ] || return 0
+  mkdir -p "$stage/$(dirname "$dest")"
+  cp "$built" "$stage/$dest"
+  cp "$templates/$dest.meta" "$stage/$dest.meta"
+  local dir
+  dir=$(dirname "$dest")
+  while [ "$dir" != "." ]; do
+    cp "$templates/$dir.meta" "$stage/$dir.meta"
+    dir=$(dirname "$dir")
+  done
+  echo "drape: packed $dest"
+}
+add_plugin build/release/plugin-native/libdrape.so Plugins/Linux/x86_64/libdrape.so
+add_plugin build/android-arm64/plugin-native/libdrape.so Plugins/Android/arm64-v8a/libdrape.so
+add_plugin build/windows-x64/plugin-native/drape.dll Plugins/Windows/x86_64/drape.dll
+
+node .ci/unity-meta.mjs check "$stage" --root-version package.json
+version=$(node -p "require('./package.json').version")
+tarball=$(cd build && npm pack "./unity-package-stage/package" --silent)
+echo "drape: wrote build/$tarball (Unity: Package Manager > + > Add package from tarball...)"
+tar -tzf "build/$tarball" | grep -q "package/Plugins/Linux/x86_64/libdrape.so.meta"
+test "$tarball" = "com.drape.cloth-$version.tgz"

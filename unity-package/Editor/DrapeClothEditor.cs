@@ -1,0 +1,120 @@
+using Drape.Core;
+using UnityEditor;
+using UnityEngine;
+
+namespace Drape.Editor
+{
+    /// <summary>Inspector for <see cref="DrapeCloth"/>: the serialized fields plus warnings about
+    /// settings that will misbehave, and live statistics in Play mode.</summary>
+    [CustomEditor(typeof(DrapeCloth))]
+    [CanEditMultipleObjects]
+    public sealed class DrapeClothEditor : UnityEditor.Editor
+    {
+        public override void OnInspectorGUI()
+        {
+            serializedObject.Update();
+            DrawDefaultInspector();
+            serializedObject.ApplyModifiedProperties();
+
+            var cloth = (DrapeCloth)target;
+            foreach (string warning in Warnings(cloth))
+                EditorGUILayout.HelpBox(warning, MessageType.Warning);
+
+            if (Application.isPlaying && cloth.NativeCloth != null)
+            {
+                Stats s = cloth.LastStats;
+                EditorGUILayout.LabelField("Live", EditorStyles.boldLabel);
+                EditorGUILayout.LabelField("Backend", cloth.ActiveBackend.ToString());
+                EditorGUILayout.LabelField("Vertices / particles",
+                                           cloth.NativeCloth.Info.VertexCount + " / " + cloth.NativeCloth.Info.ParticleCount);
+                EditorGUILayout.LabelField("Step", s.StepMs.ToString("F3") + " ms, " + s.Substeps + " substeps x " +
+                                                       s.Iterations + " iterations");
+                EditorGUILayout.LabelField("Strain max / rms", (s.MaxStrain * 100f).ToString("F2") + " % / " +
+                                                                   (s.RmsStrain * 100f).ToString("F2") + " %");
+                EditorGUILayout.LabelField("Rolled-back steps", s.UnstableSteps.ToString());
+                if (cloth.IsAsleep) EditorGUILayout.HelpBox("Asleep (below the sleep threshold).", MessageType.Info);
+                Repaint();
+            }
+        }
+
+        /// <summary>Problems with the current settings, in words (empty when none).</summary>
+        public static System.Collections.Generic.List<string> Warnings(DrapeCloth cloth)
+        {
+            var list = new System.Collections.Generic.List<string>();
+            float dt = cloth.StepMode == DrapeStepMode.FixedUpdate ? Time.fixedDeltaTime : cloth.FixedStep;
+            int vertexCount = cloth.Source == DrapeShapeSource.GeneratedGrid ? cloth.Columns * cloth.Rows : MeshVertexCount(cloth);
+
+            if (cloth.Model == Model.MassSpring && vertexCount > 0 && dt > 0f)
+            {
+                var k = new GroupValues(cloth.StructuralStiffness, cloth.ShearStiffness, cloth.BendStiffness);
+                int needed = Stability.MassSpringSubstepsNeeded(k, cloth.TotalMass / vertexCount, dt);
+                if (cloth.Substeps > 0 && cloth.Substeps < needed)
+                    list.Add("Mass-spring at this stiffness and mass is unstable with " + cloth.Substeps +
+                             " substeps at dt = " + dt.ToString("F4") + " s: it needs about " + needed +
+                             " (h * omega_max < 2). Raise Substeps, set 0 (automatic), lower stiffness or use XPBD.");
+                else if (cloth.Substeps == 0 && needed > 16)
+                    list.Add("Mass-spring needs about " + needed + " substeps per step here (chosen automatically); " +
+                             "XPBD gives the same stiffness at a fraction of the cost.");
+            }
+            if (cloth.Model == Model.Pbd &&
+                (cloth.StructuralStiffness > 1f || cloth.ShearStiffness > 1f || cloth.BendStiffness > 1f))
+                list.Add("PBD stiffness is a fraction per iteration in [0, 1]; values above 1 are refused by the native library.");
+            if (cloth.Backend == DrapeBackendChoice.Gpu)
+                list.Add("The GPU backend awaits the native render-event API; the cloth runs on the CPU meanwhile.");
+            if (cloth.Colliders.Colliders.Count + cloth.Colliders.Planes.Count > 0)
+                list.Add("Collision awaits the native collider API: listed colliders are gathered but not used yet.");
+            if (cloth.GetComponent<DrapeTouchDrag>() != null)
+                list.Add("Touch drag awaits the native drag API: input is read but does not move the cloth yet.");
+            if (cloth.Source == DrapeShapeSource.MeshFilterMesh)
+            {
+                var filter = cloth.GetComponent<MeshFilter>();
+                Mesh mesh = filter != null ? filter.sharedMesh : null;
+                if (mesh == null) list.Add("No mesh on the MeshFilter: a grid will be generated.");
+                else if (!mesh.isReadable) list.Add("Mesh '" + mesh.name + "' is not readable: enable Read/Write in its import settings.");
+            }
+            if (cloth.PinMode == DrapePinMode.None)
+                list.Add("No pins: the cloth will fall freely.");
+            return list;
+        }
+
+        private static int MeshVertexCount(DrapeCloth cloth)
+        {
+            var filter = cloth.GetComponent<MeshFilter>();
+            return filter != null && filter.sharedMesh != null ? filter.sharedMesh.vertexCount : 0;
+        }
+    }
+
+    /// <summary>Scene-view gizmos: pinned vertices and the registered colliders.</summary>
+    internal static class DrapeClothGizmos
+    {
+        [DrawGizmo(GizmoType.Selected | GizmoType.Active)]
+        private static void Draw(DrapeCloth cloth, GizmoType type)
+        {
+            Vector3[] rest = cloth.RestPositions;
+            Gizmos.color = new Color(1f, 0.4f, 0.1f);
+            Gizmos.matrix = cloth.transform.localToWorldMatrix;
+            if (rest != null)
+            {
+                System.ReadOnlySpan<uint> pins = cloth.ActivePins;
+                for (int i = 0; i < pins.Length; ++i)
+                    if (pins[i] < rest.Length) Gizmos.DrawSphere(rest[pins[i]], 0.01f);
+            }
+            Gizmos.matrix = Matrix4x4.identity;
+            Gizmos.color = new Color(0.2f, 0.8f, 1f);
+            foreach (Collider c in cloth.Colliders.Colliders)
+            {
+                if (c == null) continue;
+                Bounds b = c.bounds;
+                Gizmos.DrawWireCube(b.center, b.size);
+            }
+            foreach (Transform plane in cloth.Colliders.Planes)
+            {
+                if (plane == null) continue;
+                Gizmos.DrawLine(plane.position, plane.position + plane.up * 0.5f);
+                Gizmos.matrix = Matrix4x4.TRS(plane.position, plane.rotation, Vector3.one);
+                Gizmos.DrawWireCube(Vector3.zero, new Vector3(2f, 0f, 2f));
+                Gizmos.matrix = Matrix4x4.identity;
+            }
+        }
+    }
+}

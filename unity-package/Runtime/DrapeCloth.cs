@@ -1,0 +1,564 @@
+using System;
+using System.Collections.Generic;
+using System.Runtime.InteropServices;
+using Drape.Core;
+using Unity.Collections;
+using Unity.Collections.LowLevel.Unsafe;
+using UnityEngine;
+using UnityEngine.Rendering;
+
+namespace Drape
+{
+    /// <summary>Where the cloth's shape comes from.</summary>
+    public enum DrapeShapeSource
+    {
+        /// <summary>The MeshFilter's mesh (must be Read/Write enabled).</summary>
+        MeshFilterMesh = 0,
+        /// <summary>A grid generated in the local XY plane, rows going down (-Y): a curtain.</summary>
+        GeneratedGrid = 1,
+    }
+
+    /// <summary>Which solver runs the cloth.</summary>
+    public enum DrapeBackendChoice
+    {
+        /// <summary>GPU where available, else threaded CPU for large cloths, else CPU.</summary>
+        Auto = 0,
+        Cpu = 1,
+        CpuThreaded = 2,
+        /// <summary>OpenGL ES 3 transform feedback. AWAITS NATIVE API (render event, Unity VBO);
+        /// falls back to the CPU until then.</summary>
+        Gpu = 3,
+    }
+
+    /// <summary>Which vertices are pinned.</summary>
+    public enum DrapePinMode
+    {
+        None = 0,
+        /// <summary>Grid: row 0. Mesh: the vertices at the top (highest local Y).</summary>
+        TopEdge = 1,
+        /// <summary>The two ends of the top edge.</summary>
+        Corners = 2,
+        /// <summary>The vertex indices listed in Pinned Vertices.</summary>
+        VertexList = 3,
+        /// <summary>Vertices whose colour's red channel is above the threshold.</summary>
+        VertexColor = 4,
+    }
+
+    /// <summary>When the cloth steps.</summary>
+    public enum DrapeStepMode
+    {
+        /// <summary>One step of Time.fixedDeltaTime per FixedUpdate.</summary>
+        FixedUpdate = 0,
+        /// <summary>In Update, as many fixed steps as the frame time holds (accumulator).</summary>
+        FixedStepPerFrame = 1,
+    }
+
+    /// <summary>The vertex the native side writes into the mesh's stream 0. Keep in sync with the
+    /// VertexAttributeDescriptor list in <see cref="DrapeCloth"/> and VertexLayout(24, 0, 12).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct DrapeVertex
+    {
+        public Vector3 Position;
+        public Vector3 Normal;
+    }
+
+    /// <summary>Simulates this GameObject's mesh (or a generated grid) as cloth with Drape's native
+    /// solver and renders the result through the MeshFilter. Simulation space is the GameObject's
+    /// local space: gravity and wind are turned into it every step, so moving the object carries the
+    /// cloth (and its pins) along rigidly.</summary>
+    [DisallowMultipleComponent]
+    [RequireComponent(typeof(MeshFilter))]
+    [AddComponentMenu("Drape/Drape Cloth")]
+    public sealed class DrapeCloth : MonoBehaviour
+    {
+        [Header("Shape")]
+        [Tooltip("Use the MeshFilter's mesh (Read/Write enabled) or generate a grid.")]
+        public DrapeShapeSource Source = DrapeShapeSource.GeneratedGrid;
+
+        [Tooltip("Grid vertices per row.")]
+        [Range(2, 256)] public int Columns = 32;
+
+        [Tooltip("Grid rows.")]
+        [Range(2, 256)] public int Rows = 32;
+
+        [Tooltip("Grid width (local X) and height (local -Y), metres.")]
+        public Vector2 Size = new Vector2(1f, 1f);
+
+        [Tooltip("Mesh vertices closer than this (m) are simulated as one: Unity splits vertices at UV seams.")]
+        [Range(0f, 0.01f)] public float WeldDistance = 0.0001f;
+
+        [Header("Solver")]
+        [Tooltip("Auto: GPU where available, else CPU (threaded for large cloths).")]
+        public DrapeBackendChoice Backend = DrapeBackendChoice.Auto;
+
+        [Tooltip("XPBD: accurate, stiffness in N/m, independent of step and iterations (default). " +
+                 "PBD: the paper's position-based model, stiffness is a fraction per iteration. " +
+                 "Mass-spring: the paper's explicit springs; needs substeps when stiff.")]
+        public Model Model = Model.Xpbd;
+
+        [Tooltip("Stretch springs/constraints (grid neighbours, mesh edges). N/m per spring; PBD: 0..1.")]
+        [Range(0f, 20000f)] public float StructuralStiffness = 2000f;
+
+        [Tooltip("Shear springs (grid diagonals). N/m per spring; PBD: 0..1.")]
+        [Range(0f, 20000f)] public float ShearStiffness = 1000f;
+
+        [Tooltip("Bend springs (two apart / across an edge). N/m per spring; PBD: 0..1.")]
+        [Range(0f, 20000f)] public float BendStiffness = 200f;
+
+        [Tooltip("Damping along each spring, N*s/m (paper eq. 2).")]
+        [Range(0f, 10f)] public float Damping = 0.05f;
+
+        [Tooltip("Mass of the whole cloth, kg, spread over the vertices by area.")]
+        [Range(0.001f, 100f)] public float TotalMass = 0.5f;
+
+        [Tooltip("Use Physics.gravity instead of the value below.")]
+        public bool UseUnityGravity = true;
+
+        [Tooltip("Gravity in world space, m/s^2.")]
+        public Vector3 Gravity = new Vector3(0f, -9.81f, 0f);
+
+        [Tooltip("Air velocity in world space, m/s.")]
+        public Vector3 Wind = Vector3.zero;
+
+        [Tooltip("How fast the cloth takes on the wind's velocity, 1/s.")]
+        [Range(0f, 10f)] public float AirDrag = 0.1f;
+
+        [Tooltip("Substeps per step. 0 = automatic (mass-spring: from the stability bound).")]
+        [Range(0, 64)] public int Substeps = 0;
+
+        [Tooltip("Solver iterations per substep (PBD, XPBD).")]
+        [Range(1, 32)] public int Iterations = 4;
+
+        [Header("Pins")]
+        [Tooltip("Which vertices are held in place (in the GameObject's local space).")]
+        public DrapePinMode PinMode = DrapePinMode.TopEdge;
+
+        [Tooltip("Vertex indices pinned in Vertex List mode.")]
+        public List<int> PinnedVertices = new List<int>();
+
+        [Tooltip("Vertex Color mode: vertices whose red channel is above this are pinned.")]
+        [Range(0f, 1f)] public float PinColorThreshold = 0.5f;
+
+        [Header("Timing")]
+        [Tooltip("FixedUpdate: one step per physics tick. Fixed Step Per Frame: fixed steps in Update from an accumulator.")]
+        public DrapeStepMode StepMode = DrapeStepMode.FixedUpdate;
+
+        [Tooltip("Step length for Fixed Step Per Frame, seconds.")]
+        [Range(0.001f, 0.05f)] public float FixedStep = 1f / 60f;
+
+        [Tooltip("Most steps one frame may take (Fixed Step Per Frame); the rest of the time is dropped.")]
+        [Range(1, 8)] public int MaxStepsPerFrame = 3;
+
+        [Tooltip("Stop stepping while no camera renders the cloth (shadows and Scene view count).")]
+        public bool PauseWhenInvisible = true;
+
+        [Tooltip("Sleep when the mean kinetic energy per kg (J/kg) stays below this for 30 steps; 0 = never. " +
+                 "Wakes on parameter, pin or transform changes.")]
+        [Range(0f, 0.01f)] public float SleepThreshold = 0f;
+
+        [Header("Colliders")]
+        [Tooltip("AWAITS NATIVE API: listed colliders are gathered (see DrapeColliderSet) but drape.h cannot take them yet.")]
+        public DrapeColliderSet Colliders = new DrapeColliderSet();
+
+        /// <summary>True once native collider registration exists; until then nothing is sent.</summary>
+        public const bool NativeCollidersAvailable = false;
+
+        // Native objects and buffers.
+        private World _world;
+        private Cloth _cloth;
+        private Mesh _mesh;
+        private Mesh _originalMesh;
+        private NativeArray<DrapeVertex> _vertices;
+        private Drape.Core.Pin[] _pins = new Drape.Core.Pin[0];
+        private uint[] _pinnedIndices = new uint[0];
+        private int _pinCount;
+        private Vector3[] _restPositions;
+        private Color[] _restColors;
+        private MeshRenderer _renderer;
+
+        private float _accumulator;
+        private bool _paramsDirty = true;
+        private bool _pinsDirty = true;
+        private int _quietSteps;
+        private bool _asleep;
+        private Stats _lastStats;
+
+        private static readonly VertexLayout s_layout = new VertexLayout(24, 0, 12);
+
+        /// <summary>The native cloth, or null while disabled.</summary>
+        public Cloth NativeCloth => _cloth;
+
+        /// <summary>Statistics of the last step.</summary>
+        public Stats LastStats => _lastStats;
+
+        /// <summary>Vertices of the simulated mesh (0 while disabled).</summary>
+        public int VertexCount => _cloth != null ? _cloth.VertexCount : 0;
+
+        /// <summary>The backend the cloth actually runs on.</summary>
+        public Drape.Core.Backend ActiveBackend { get; private set; }
+
+        /// <summary>True while stepping is skipped because the cloth came to rest.</summary>
+        public bool IsAsleep => _asleep;
+
+        /// <summary>Pinned vertex indices in use (valid while enabled).</summary>
+        public ReadOnlySpan<uint> ActivePins => new ReadOnlySpan<uint>(_pinnedIndices, 0, _pinCount);
+
+        /// <summary>Rest positions (local) of the simulated mesh, for gizmos.</summary>
+        public Vector3[] RestPositions => _restPositions;
+
+        private void OnEnable()
+        {
+            try
+            {
+                Build();
+            }
+            catch (Exception e)
+            {
+                Debug.LogException(e, this);
+                Release();
+                enabled = false;
+            }
+        }
+
+        private void OnDisable() => Release();
+
+        private void OnDestroy() => Release();
+
+        private void OnValidate()
+        {
+            // May run off the main thread: only flag; the next step applies the change.
+            _paramsDirty = true;
+            _pinsDirty = true;
+            _asleep = false;
+        }
+
+        private void FixedUpdate()
+        {
+            if (StepMode == DrapeStepMode.FixedUpdate) Simulate(Time.fixedDeltaTime, 1);
+        }
+
+        private void Update()
+        {
+            if (StepMode != DrapeStepMode.FixedStepPerFrame) return;
+            _accumulator += Time.deltaTime;
+            int steps = (int)(_accumulator / FixedStep);
+            if (steps > MaxStepsPerFrame)
+            {
+                steps = MaxStepsPerFrame;
+                _accumulator = 0f; // drop the backlog rather than spiral
+            }
+            else
+            {
+                _accumulator -= steps * FixedStep;
+            }
+            if (steps > 0) Simulate(FixedStep, steps);
+        }
+
+        /// <summary>Wakes a sleeping cloth (for example after moving something it rests on).</summary>
+        public void WakeUp()
+        {
+            _asleep = false;
+            _quietSteps = 0;
+        }
+
+        /// <summary>Marks parameters as changed: they are pushed before the next step.</summary>
+        public void MarkParamsDirty()
+        {
+            _paramsDirty = true;
+            WakeUp();
+        }
+
+        private void Simulate(float dt, int steps)
+        {
+            if (_cloth == null) return;
+            if (PauseWhenInvisible && _renderer != null && !_renderer.isVisible) return;
+            if (transform.hasChanged)
+            {
+                transform.hasChanged = false;
+                _paramsDirty = true; // gravity and wind are re-expressed in local space
+                WakeUp();
+            }
+            if (_pinsDirty) ApplyPins();
+            if (_paramsDirty) ApplyParams();
+            if (_asleep) return;
+
+            for (int i = 0; i < steps; ++i) _cloth.Step(dt);
+            _lastStats = _cloth.GetStats();
+            UpdateSleep();
+            WriteMesh();
+        }
+
+        private void UpdateSleep()
+        {
+            if (SleepThreshold <= 0f)
+            {
+                _quietSteps = 0;
+                return;
+            }
+            float perKg = _lastStats.KineticEnergy / Mathf.Max(TotalMass, 1e-6f);
+            _quietSteps = perKg < SleepThreshold ? _quietSteps + 1 : 0;
+            if (_quietSteps >= 30) _asleep = true;
+        }
+
+        private unsafe void WriteMesh()
+        {
+            int count = _vertices.Length;
+            _cloth.Read(s_layout, NativeArrayUnsafeUtility.GetUnsafePtr(_vertices), (long)count * 24);
+            // Bounds from the simulated positions (the renderer culls with them).
+            Vector3 min = _vertices[0].Position, max = min;
+            for (int i = 1; i < count; ++i)
+            {
+                Vector3 p = _vertices[i].Position;
+                min = Vector3.Min(min, p);
+                max = Vector3.Max(max, p);
+            }
+            const MeshUpdateFlags flags = MeshUpdateFlags.DontValidateIndices | MeshUpdateFlags.DontRecalculateBounds;
+            _mesh.SetVertexBufferData(_vertices, 0, 0, count, 0, flags);
+            var bounds = new Bounds();
+            bounds.SetMinMax(min, max);
+            _mesh.bounds = bounds;
+        }
+
+        private Drape.Core.Backend ChooseBackend(int vertexCount)
+        {
+            switch (Backend)
+            {
+                case DrapeBackendChoice.Cpu:
+                    return Drape.Core.Backend.Cpu;
+                case DrapeBackendChoice.CpuThreaded:
+                    return Drape.Core.Backend.CpuThreaded;
+                case DrapeBackendChoice.Gpu:
+                    // AWAITS NATIVE API: the GLES path needs a render-event entry point and the Unity
+                    // vertex buffer hand-over, which drape.h does not have yet.
+                    Debug.LogWarning("Drape: the GPU backend is not available yet (awaits the native render-event API); " +
+                                     "running on the CPU.", this);
+                    return Drape.Core.Backend.CpuThreaded;
+                default:
+                    return vertexCount >= 2048 ? Drape.Core.Backend.CpuThreaded : Drape.Core.Backend.Cpu;
+            }
+        }
+
+        private void Build()
+        {
+            var filter = GetComponent<MeshFilter>();
+            _renderer = GetComponent<MeshRenderer>();
+            _originalMesh = filter.sharedMesh;
+
+            Vector3[] positions;
+            Vector2[] uvs;
+            int[] triangles;
+            if (Source == DrapeShapeSource.GeneratedGrid || _originalMesh == null)
+            {
+                MakeGrid(Columns, Rows, Size, out positions, out uvs, out triangles);
+                _restColors = null;
+            }
+            else
+            {
+                if (!_originalMesh.isReadable)
+                    throw new InvalidOperationException("Drape: mesh '" + _originalMesh.name +
+                                                        "' is not readable; enable Read/Write in its import settings.");
+                positions = _originalMesh.vertices;
+                uvs = _originalMesh.uv;
+                triangles = _originalMesh.triangles;
+                _restColors = _originalMesh.colors;
+            }
+            _restPositions = positions;
+
+            _world = DrapeSimulation.Acquire();
+            ActiveBackend = ChooseBackend(positions.Length);
+            var desc = new ClothDesc { Backend = ActiveBackend, TotalMass = TotalMass };
+            if (Source == DrapeShapeSource.GeneratedGrid || _originalMesh == null)
+            {
+                // The native grid path: the paper's 12-neighbour stencil (structural, shear, bend),
+                // same vertex order as MakeGrid (r * columns + c).
+                var grid = new GridDesc
+                {
+                    Columns = (uint)Columns,
+                    Rows = (uint)Rows,
+                    Width = Size.x,
+                    Height = Size.y,
+                    Origin = new Float3(-0.5f * Size.x, 0f, 0f),
+                    AxisU = new Float3(1f, 0f, 0f),
+                    AxisV = new Float3(0f, -1f, 0f),
+                };
+                _cloth = Cloth.CreateGrid(_world, desc, grid);
+            }
+            else
+            {
+                var flat = new float[positions.Length * 3];
+                for (int i = 0; i < positions.Length; ++i)
+                {
+                    flat[3 * i] = positions[i].x;
+                    flat[3 * i + 1] = positions[i].y;
+                    flat[3 * i + 2] = positions[i].z;
+                }
+                _cloth = Cloth.CreateMesh(_world, desc, flat, triangles, WeldDistance);
+            }
+
+            // Output mesh: stream 0 = position + normal (written by the native side every step),
+            // stream 1 = UV (static).
+            _mesh = new Mesh { name = "Drape " + name };
+            _mesh.MarkDynamic();
+            _mesh.SetVertexBufferParams(positions.Length,
+                new VertexAttributeDescriptor(VertexAttribute.Position, VertexAttributeFormat.Float32, 3, 0),
+                new VertexAttributeDescriptor(VertexAttribute.Normal, VertexAttributeFormat.Float32, 3, 0),
+                new VertexAttributeDescriptor(VertexAttribute.TexCoord0, VertexAttributeFormat.Float32, 2, 1));
+            if (uvs == null || uvs.Length != positions.Length) uvs = new Vector2[positions.Length];
+            _mesh.SetVertexBufferData(uvs, 0, 0, uvs.Length, 1);
+            _mesh.SetIndexBufferParams(triangles.Length, IndexFormat.UInt32);
+            _mesh.SetIndexBufferData(triangles, 0, 0, triangles.Length);
+            _mesh.subMeshCount = 1;
+            _mesh.SetSubMesh(0, new SubMeshDescriptor(0, triangles.Length));
+            filter.sharedMesh = _mesh;
+
+            _vertices = new NativeArray<DrapeVertex>(positions.Length, Allocator.Persistent);
+            _paramsDirty = true;
+            _pinsDirty = true;
+            _asleep = false;
+            transform.hasChanged = false;
+            ApplyPins();
+            ApplyParams();
+            WriteMesh();
+        }
+
+        private void Release()
+        {
+            if (_cloth != null)
+            {
+                _cloth.Dispose();
+                _cloth = null;
+            }
+            if (_world != null)
+            {
+                _world = null;
+                DrapeSimulation.Release();
+            }
+            if (_vertices.IsCreated) _vertices.Dispose();
+            if (_mesh != null)
+            {
+                var filter = GetComponent<MeshFilter>();
+                if (filter != null && filter.sharedMesh == _mesh) filter.sharedMesh = _originalMesh;
+                if (Application.isPlaying) Destroy(_mesh);
+                else DestroyImmediate(_mesh);
+                _mesh = null;
+            }
+        }
+
+        private void ApplyParams()
+        {
+            _paramsDirty = false;
+            Params p = World.DefaultParams();
+            p.Model = Model;
+            p.Stiffness = new GroupValues(StructuralStiffness, ShearStiffness, BendStiffness);
+            p.Damping = Damping;
+            Vector3 g = transform.InverseTransformDirection(UseUnityGravity ? Physics.gravity : Gravity);
+            Vector3 w = transform.InverseTransformDirection(Wind);
+            p.Gravity = new Float3(g.x, g.y, g.z);
+            p.Wind = new Float3(w.x, w.y, w.z);
+            p.AirDrag = AirDrag;
+            p.Substeps = (uint)Mathf.Max(0, Substeps);
+            p.Iterations = (uint)Mathf.Max(1, Iterations);
+            _cloth.SetParams(p);
+        }
+
+        private void ApplyPins()
+        {
+            _pinsDirty = false;
+            if (_pinCount > 0) _cloth.ReleasePins(new ReadOnlySpan<uint>(_pinnedIndices, 0, _pinCount));
+            _pinCount = 0;
+            int n = _restPositions.Length;
+            if (_pinnedIndices.Length < n)
+            {
+                _pinnedIndices = new uint[n];
+                _pins = new Drape.Core.Pin[n];
+            }
+            SelectPins();
+            for (int k = 0; k < _pinCount; ++k)
+            {
+                Vector3 p = _restPositions[_pinnedIndices[k]];
+                _pins[k] = new Drape.Core.Pin(_pinnedIndices[k], new Float3(p.x, p.y, p.z));
+            }
+            if (_pinCount > 0) _cloth.SetPins(new Span<Drape.Core.Pin>(_pins, 0, _pinCount));
+        }
+
+        private void SelectPins()
+        {
+            int n = _restPositions.Length;
+            bool grid = Source == DrapeShapeSource.GeneratedGrid || _originalMesh == null;
+            switch (PinMode)
+            {
+                case DrapePinMode.TopEdge:
+                case DrapePinMode.Corners:
+                {
+                    float top = float.MinValue, bottom = float.MaxValue;
+                    for (int i = 0; i < n; ++i)
+                    {
+                        top = Mathf.Max(top, _restPositions[i].y);
+                        bottom = Mathf.Min(bottom, _restPositions[i].y);
+                    }
+                    float eps = Mathf.Max(1e-5f, (top - bottom) * 1e-3f);
+                    if (grid && PinMode == DrapePinMode.TopEdge)
+                    {
+                        for (int c = 0; c < Columns; ++c) _pinnedIndices[_pinCount++] = (uint)c;
+                        break;
+                    }
+                    int left = -1, right = -1;
+                    for (int i = 0; i < n; ++i)
+                    {
+                        if (_restPositions[i].y < top - eps) continue;
+                        if (PinMode == DrapePinMode.TopEdge) _pinnedIndices[_pinCount++] = (uint)i;
+                        if (left < 0 || _restPositions[i].x < _restPositions[left].x) left = i;
+                        if (right < 0 || _restPositions[i].x > _restPositions[right].x) right = i;
+                    }
+                    if (PinMode == DrapePinMode.Corners && left >= 0)
+                    {
+                        _pinnedIndices[_pinCount++] = (uint)left;
+                        if (right != left) _pinnedIndices[_pinCount++] = (uint)right;
+                    }
+                    break;
+                }
+                case DrapePinMode.VertexList:
+                    for (int k = 0; k < PinnedVertices.Count && _pinCount < n; ++k)
+                    {
+                        int v = PinnedVertices[k];
+                        if (v >= 0 && v < n) _pinnedIndices[_pinCount++] = (uint)v;
+                    }
+                    break;
+                case DrapePinMode.VertexColor:
+                    if (_restColors != null && _restColors.Length == n)
+                        for (int i = 0; i < n; ++i)
+                            if (_restColors[i].r > PinColorThreshold) _pinnedIndices[_pinCount++] = (uint)i;
+                    break;
+            }
+        }
+
+        /// <summary>A Columns x Rows grid in the local XY plane, centred on X, hanging from y = 0
+        /// down to y = -Size.y; two triangles per cell.</summary>
+        internal static void MakeGrid(int columns, int rows, Vector2 size, out Vector3[] positions, out Vector2[] uvs,
+                                      out int[] triangles)
+        {
+            positions = new Vector3[columns * rows];
+            uvs = new Vector2[columns * rows];
+            for (int r = 0; r < rows; ++r)
+            for (int c = 0; c < columns; ++c)
+            {
+                float u = c / (float)(columns - 1), v = r / (float)(rows - 1);
+                positions[r * columns + c] = new Vector3((u - 0.5f) * size.x, -v * size.y, 0f);
+                uvs[r * columns + c] = new Vector2(u, 1f - v);
+            }
+            triangles = new int[(columns - 1) * (rows - 1) * 6];
+            int t = 0;
+            for (int r = 0; r + 1 < rows; ++r)
+            for (int c = 0; c + 1 < columns; ++c)
+            {
+                int i = r * columns + c;
+                triangles[t++] = i;
+                triangles[t++] = i + 1;
+                triangles[t++] = i + columns;
+                triangles[t++] = i + 1;
+                triangles[t++] = i + columns + 1;
+                triangles[t++] = i + columns;
+            }
+        }
+    }
+}

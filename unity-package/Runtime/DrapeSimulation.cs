@@ -1,0 +1,51 @@
+using Drape.Core;
+using UnityEngine;
+
+namespace Drape
+{
+    /// <summary>The one native world every <see cref="DrapeCloth"/> lives in (its CpuThreaded
+    /// worker pool is shared). Created by the first enabled cloth, disposed with the last one, and
+    /// reset before a scene loads when domain reload is off.</summary>
+    public static class DrapeSimulation
+    {
+        private static World s_world;
+        private static int s_users;
+
+        /// <summary>Takes a reference on the shared world (creating it if needed).</summary>
+        public static World Acquire()
+        {
+            if (s_world == null || s_world.IsDisposed) s_world = new World(0);
+            s_users++;
+            return s_world;
+        }
+
+        /// <summary>Gives back a reference taken by <see cref="Acquire"/>.</summary>
+        public static void Release()
+        {
+            if (s_users > 0) s_users--;
+            if (s_users == 0 && s_world != null)
+            {
+                s_world.Dispose(); // native destroy waits for any cloth handle still open
+                s_world = null;
+            }
+        }
+
+        [RuntimeInitializeOnLoadMethod(RuntimeInitializeLoadType.SubsystemRegistration)]
+        private static void ResetStatics()
+        {
+            // With "Enter Play Mode Options" and no domain reload, statics survive: start clean.
+            if (s_world != null) s_world.Dispose();
+            s_world = null;
+            s_users = 0;
+        }
+
+#if UNITY_EDITOR
+        [UnityEditor.InitializeOnLoadMethod]
+        private static void HookAssemblyReload()
+        {
+            // Native memory survives a domain reload; free it before the managed side goes away.
+            UnityEditor.AssemblyReloadEvents.beforeAssemblyReload += ResetStatics;
+        }
+#endif
+    }
+}
