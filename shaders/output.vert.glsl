@@ -1,0 +1,70 @@
+#version 300 es
+// Drape GLES output pass: one vertex per caller vertex, captured by transform feedback straight
+// into the caller's vertex buffer (Unity: Mesh.GetNativeVertexBufferPtr) in the caller's layout.
+// Mirrors Cloth::read: positions of the simulated particle, area-weighted vertex normals
+// (sum of unnormalised face normals cross(p1 - p0, p2 - p0) in triangle order, normalised;
+// (0,1,0) where the sum is zero).
+//
+// Variants by #define:
+//   DRAPE_WRITE_POSITION   capture v_position
+//   DRAPE_WRITE_NORMAL     capture v_normal (no normal code otherwise)
+//   DRAPE_KEEP_DECLS       generated `in uvecN a_keepK; flat out uvecN v_keepK;` for the bytes of
+//   DRAPE_KEEP_COPY        the record this pass does not own (copied bit for bit from a scratch copy)
+//   DRAPE_RECORD           vec4s per particle record in u_x (see sim.vert.glsl)
+//   DRAPE_TRI_SLOTS        incident-triangle table row length
+#ifndef DRAPE_RECORD
+#define DRAPE_RECORD 1
+#endif
+#ifndef DRAPE_TRI_SLOTS
+#define DRAPE_TRI_SLOTS 6
+#endif
+#if !defined(DRAPE_WRITE_POSITION) && !defined(DRAPE_WRITE_NORMAL)
+#define DRAPE_WRITE_POSITION 1
+#define DRAPE_WRITE_NORMAL 1
+#endif
+
+precision highp float;
+precision highp int;
+
+uniform highp sampler2D u_x;      // particle records after the last substep
+uniform highp usampler2D u_tris;  // texel i*DRAPE_TRI_SLOTS+t = incident triangle (p0, p1, p2, 0)
+uniform highp usampler2D u_info;  // per particle (neighbours, active springs, triangles, 0)
+uniform int u_tex_width;
+
+in uint a_particle;               // caller vertex -> simulated particle (welding)
+#ifdef DRAPE_WRITE_POSITION
+out vec3 v_position;
+#endif
+#ifdef DRAPE_WRITE_NORMAL
+out vec3 v_normal;
+#endif
+#ifdef DRAPE_KEEP_DECLS
+DRAPE_KEEP_DECLS
+#endif
+
+ivec2 texel(int t) { return ivec2(t % u_tex_width, t / u_tex_width); }
+vec3 position(int p) { return texelFetch(u_x, texel(p * DRAPE_RECORD), 0).xyz; }
+
+void main() {
+    int i = int(a_particle);
+#ifdef DRAPE_WRITE_POSITION
+    v_position = position(i);
+#endif
+#ifdef DRAPE_WRITE_NORMAL
+    int tris = int(texelFetch(u_info, texel(i), 0).z);
+    vec3 sum = vec3(0.0);
+    for (int t = 0; t < tris; ++t) {
+        uvec4 tri = texelFetch(u_tris, texel(i * DRAPE_TRI_SLOTS + t), 0);
+        vec3 p0 = position(int(tri.x));
+        vec3 p1 = position(int(tri.y));
+        vec3 p2 = position(int(tri.z));
+        sum += cross(p1 - p0, p2 - p0);
+    }
+    float len = length(sum);
+    v_normal = len > 0.0 ? sum / len : vec3(0.0, 1.0, 0.0);
+#endif
+#ifdef DRAPE_KEEP_COPY
+    DRAPE_KEEP_COPY
+#endif
+    gl_Position = vec4(0.0);
+}

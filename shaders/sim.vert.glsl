@@ -1,0 +1,345 @@
+#version 300 es
+// Drape GLES 3.0 simulation passes (transform feedback, one vertex = one particle).
+// Mirrors plugin-native/src/backend/cpu/kernels.h line by line; keep the two in sync.
+//
+// Variants by #define (inserted after #version by the backend; glslangValidator checks each):
+//   DRAPE_PASS_MASS_SPRING   kernels::mass_spring_step (paper eq. 1-3)
+//   DRAPE_PASS_PREDICT       kernels::predict<DRAPE_DASHPOT> (PBD / XPBD prediction; writes
+//                            displacement records, xyz = displacement from the substep start)
+//   DRAPE_PASS_CONSTRAINT    kernels::constraint_iteration<DRAPE_XPBD, DRAPE_COMMIT>
+//   DRAPE_COMMIT             last iteration: write positions start + displacement
+//   DRAPE_DASHPOT            predict with PBD's explicit dashpots
+//   DRAPE_XPBD               constraint pass is XPBD (lambdas ride in the record), else PBD
+//   DRAPE_KINEMATIC          some particles have w = 0: place them on their pin path
+//   DRAPE_RECORD             vec4s per particle record: 1, or 1 + DRAPE_LAMBDA_VEC4 for XPBD
+//   DRAPE_LAMBDA_VEC4        XPBD: vec4s of lambdas per record (slots rounded up to 4)
+//   DRAPE_SLOTS              neighbour-table row length
+//
+// Data: particle records xyzw (w = inverse mass) come in as attributes (own particle) and as
+// texels of highp RGBA32F textures (neighbours; texel j*DRAPE_RECORD). The neighbour table is a
+// RGBA32UI texture, texel i*DRAPE_SLOTS+s = (index, floatBitsToUint(rest), group, 0); the
+// particle table texel i = (neighbour count, active springs, 0, 0). All textures are
+// u_tex_width texels wide (row-major).
+#if !defined(DRAPE_PASS_MASS_SPRING) && !defined(DRAPE_PASS_PREDICT) && !defined(DRAPE_PASS_CONSTRAINT)
+#define DRAPE_PASS_MASS_SPRING 1
+#endif
+#ifndef DRAPE_SLOTS
+#define DRAPE_SLOTS 12
+#endif
+#ifndef DRAPE_LAMBDA_VEC4
+#define DRAPE_LAMBDA_VEC4 3
+#endif
+#ifndef DRAPE_RECORD
+#define DRAPE_RECORD 1
+#endif
+
+precision highp float;
+precision highp int;
+
+uniform highp sampler2D u_x;        // iterate / current positions (per record)
+uniform highp sampler2D u_aux;      // MASS_SPRING, PREDICT: previous positions; CONSTRAINT: substep start
+uniform highp usampler2D u_nbr;     // neighbour table
+uniform highp usampler2D u_info;    // per particle (count, active)
+uniform int u_tex_width;
+
+uniform float u_stiffness[3];       // GroupConstants
+uniform float u_compliance[3];
+uniform float u_damping_ratio[3];
+uniform bool u_active[3];
+uniform vec3 u_gravity;
+uniform vec3 u_wind;
+uniform float u_air_drag;
+uniform float u_damping;
+uniform float u_h;
+uniform float u_inv_hp;             // 1 / h_prev, computed on the CPU as the kernel does
+uniform float u_h_ratio;            // h / h_prev, computed on the CPU (SubstepContext::h_ratio)
+uniform float u_accel_h;
+uniform float u_jacobi_coupling;    // kJacobiCoupling
+uniform float u_along;              // kinematic path fraction at the end of this substep
+
+in vec4 a_x;                        // own record: current (MS, PREDICT) / displacement iterate
+in vec4 a_aux;                      // own: previous (MS, PREDICT) or substep start (CONSTRAINT)
+#ifdef DRAPE_KINEMATIC
+in vec3 a_kstart;                   // position at the start of the step
+in vec3 a_ktarget;                  // pin target at the end of the step
+#endif
+
+out vec4 v_x;
+#if defined(DRAPE_XPBD) && (defined(DRAPE_PASS_PREDICT) || defined(DRAPE_PASS_CONSTRAINT))
+#if DRAPE_LAMBDA_VEC4 >= 1
+out vec4 v_lambda0;
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 2
+out vec4 v_lambda1;
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 3
+out vec4 v_lambda2;
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 4
+out vec4 v_lambda3;
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 5
+out vec4 v_lambda4;
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 6
+out vec4 v_lambda5;
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 7
+out vec4 v_lambda6;
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 8
+out vec4 v_lambda7;
+#endif
+#if DRAPE_LAMBDA_VEC4 > 8
+#error "more than 32 neighbour slots is not supported by the GLES backend"
+#endif
+#endif
+
+#if defined(DRAPE_XPBD) && defined(DRAPE_PASS_CONSTRAINT)
+#if DRAPE_LAMBDA_VEC4 >= 1
+in vec4 a_lambda0;
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 2
+in vec4 a_lambda1;
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 3
+in vec4 a_lambda2;
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 4
+in vec4 a_lambda3;
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 5
+in vec4 a_lambda4;
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 6
+in vec4 a_lambda5;
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 7
+in vec4 a_lambda6;
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 8
+in vec4 a_lambda7;
+#endif
+#endif
+
+ivec2 texel(int t) { return ivec2(t % u_tex_width, t / u_tex_width); }
+vec4 fetch_x(int j) { return texelFetch(u_x, texel(j * DRAPE_RECORD), 0); }
+vec4 fetch_aux(int j) { return texelFetch(u_aux, texel(j * DRAPE_RECORD), 0); }
+uvec4 fetch_nbr(int slot) { return texelFetch(u_nbr, texel(slot), 0); }
+uvec4 fetch_info(int i) { return texelFetch(u_info, texel(i), 0); }
+
+// kernels::active_slot
+bool active_group(uint g) { return g < 3u && u_active[g]; }
+
+// kernels::direction: unit vector and length; zero vector for a zero-length spring.
+vec3 direction(vec3 d, out float len) {
+    len = sqrt(dot(d, d));
+    return len > 0.0 ? d * (1.0 / len) : vec3(0.0);
+}
+
+// kernels::external_accel
+vec3 external_accel(vec3 v) { return u_gravity + u_air_drag * (u_wind - v); }
+
+#ifdef DRAPE_PASS_CONSTRAINT
+// kernels::jacobi_scale
+float jacobi_scale(float wi, float wj, uint ci, uint cj, float diag, float gamma_factor) {
+    float off = gamma_factor * (wi * float(ci - 1u) + wj * float(cj - 1u));
+    return 1.0 / (1.0 + u_jacobi_coupling * off / diag);
+}
+#endif
+
+#if !defined(DRAPE_PASS_CONSTRAINT)
+// Kinematic particles move along a straight line from their start to their target (Cloth::step
+// kinematic_at); the prediction stores it as a displacement from the current position.
+vec4 place_kinematic(vec4 x) {
+#ifdef DRAPE_KINEMATIC
+    if (a_x.w == 0.0) {
+        vec3 at = a_kstart + (a_ktarget - a_kstart) * u_along;
+#ifdef DRAPE_PASS_PREDICT
+        return vec4(at - a_x.xyz, 0.0);
+#else
+        return vec4(at, 0.0);
+#endif
+    }
+#endif
+    return x;
+}
+#endif
+
+void main() {
+    int i = gl_VertexID;
+    vec3 xi = a_x.xyz;
+    float wi = a_x.w;
+    uvec4 info = fetch_info(i);
+    int count = int(info.x);
+    int row = i * DRAPE_SLOTS;
+
+#if defined(DRAPE_PASS_MASS_SPRING)
+    // kernels::mass_spring_step
+    if (wi == 0.0) {
+        v_x = place_kinematic(a_x);
+        return;
+    }
+    vec3 vi = (xi - a_aux.xyz) * u_inv_hp;
+    vec3 force = vec3(0.0);
+    for (int s = 0; s < count; ++s) {
+        uvec4 nb = fetch_nbr(row + s);
+        if (!active_group(nb.z)) continue;
+        int j = int(nb.x);
+        vec3 xj = fetch_x(j).xyz;
+        vec3 vj = (xj - fetch_aux(j).xyz) * u_inv_hp;
+        float len;
+        vec3 n = direction(xi - xj, len);
+        float k = u_stiffness[nb.z];
+        force += (-k * (len - uintBitsToFloat(nb.y)) - u_damping * dot(vi - vj, n)) * n;
+    }
+    vec3 a = wi * force + external_accel(vi);
+    v_x = place_kinematic(vec4(xi + (xi - a_aux.xyz) * u_h_ratio + a * (u_h * u_accel_h), wi));
+
+#elif defined(DRAPE_PASS_PREDICT)
+    // kernels::predict<kDashpot>
+    vec3 d = vec3(0.0);
+    if (wi != 0.0) {
+        vec3 vi = (xi - a_aux.xyz) * u_inv_hp;
+        vec3 a = external_accel(vi);
+#ifdef DRAPE_DASHPOT
+        vec3 force = vec3(0.0);
+        float ci = float(info.y);
+        for (int s = 0; s < count; ++s) {
+            uvec4 nb = fetch_nbr(row + s);
+            if (!active_group(nb.z)) continue;
+            int j = int(nb.x);
+            vec4 rj = fetch_x(j);
+            vec3 xj = rj.xyz;
+            vec3 vj = (xj - fetch_aux(j).xyz) * u_inv_hp;
+            float len;
+            vec3 n = direction(xi - xj, len);
+            float limit = 1.0 / (u_h * (wi * ci + rj.w * float(fetch_info(j).y)));
+            force -= min(u_damping, limit) * dot(vi - vj, n) * n;
+        }
+        a += wi * force;
+#endif
+        d = (xi - a_aux.xyz) * u_h_ratio + a * (u_h * u_accel_h);
+    }
+    v_x = place_kinematic(vec4(d, wi));
+#ifdef DRAPE_XPBD
+#if DRAPE_LAMBDA_VEC4 >= 1
+    v_lambda0 = vec4(0.0);
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 2
+    v_lambda1 = vec4(0.0);
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 3
+    v_lambda2 = vec4(0.0);
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 4
+    v_lambda3 = vec4(0.0);
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 5
+    v_lambda4 = vec4(0.0);
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 6
+    v_lambda5 = vec4(0.0);
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 7
+    v_lambda6 = vec4(0.0);
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 8
+    v_lambda7 = vec4(0.0);
+#endif
+#endif
+
+#elif defined(DRAPE_PASS_CONSTRAINT)
+    // kernels::constraint_iteration<kXpbd>
+#ifdef DRAPE_XPBD
+    float lambda[DRAPE_LAMBDA_VEC4 * 4];
+#if DRAPE_LAMBDA_VEC4 >= 1
+    for (int k = 0; k < 4; ++k) lambda[0 + k] = a_lambda0[k];
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 2
+    for (int k = 0; k < 4; ++k) lambda[4 + k] = a_lambda1[k];
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 3
+    for (int k = 0; k < 4; ++k) lambda[8 + k] = a_lambda2[k];
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 4
+    for (int k = 0; k < 4; ++k) lambda[12 + k] = a_lambda3[k];
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 5
+    for (int k = 0; k < 4; ++k) lambda[16 + k] = a_lambda4[k];
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 6
+    for (int k = 0; k < 4; ++k) lambda[20 + k] = a_lambda5[k];
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 7
+    for (int k = 0; k < 4; ++k) lambda[24 + k] = a_lambda6[k];
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 8
+    for (int k = 0; k < 4; ++k) lambda[28 + k] = a_lambda7[k];
+#endif
+#endif
+    vec3 di = xi;        // displacement iterate
+    vec3 si = a_aux.xyz; // substep start
+    vec3 dx = vec3(0.0);
+    if (wi != 0.0) {
+        uint ci = info.y;
+        for (int s = 0; s < count; ++s) {
+            uvec4 nb = fetch_nbr(row + s);
+            uint g = nb.z;
+            if (!active_group(g)) continue;
+            int j = int(nb.x);
+            vec4 rj = fetch_x(j);
+            float wj = rj.w;
+            vec3 dij = di - rj.xyz;
+            float len;
+            vec3 n = direction((si - fetch_aux(j).xyz) + dij, len);
+            float constraint = len - uintBitsToFloat(nb.y);
+            float wsum = wi + wj;
+            float dl;
+#ifdef DRAPE_XPBD
+            float alpha = u_compliance[g];
+            float gamma = u_damping_ratio[g];
+            float diag = (1.0 + gamma) * wsum + alpha;
+            dl = (-constraint - alpha * lambda[s] - gamma * dot(n, dij)) / diag;
+            dl *= jacobi_scale(wi, wj, ci, fetch_info(j).y, diag, 1.0 + gamma);
+            lambda[s] += dl;
+#else
+            dl = -constraint / wsum * u_stiffness[g];
+            dl *= jacobi_scale(wi, wj, ci, fetch_info(j).y, wsum, 1.0);
+#endif
+            dx += (wi * dl) * n;
+        }
+    }
+#ifdef DRAPE_COMMIT
+    v_x = vec4(si + (di + dx), wi);
+#else
+    v_x = vec4(di + dx, wi);
+#endif
+#ifdef DRAPE_XPBD
+#if DRAPE_LAMBDA_VEC4 >= 1
+    v_lambda0 = vec4(lambda[0], lambda[1], lambda[2], lambda[3]);
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 2
+    v_lambda1 = vec4(lambda[4], lambda[5], lambda[6], lambda[7]);
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 3
+    v_lambda2 = vec4(lambda[8], lambda[9], lambda[10], lambda[11]);
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 4
+    v_lambda3 = vec4(lambda[12], lambda[13], lambda[14], lambda[15]);
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 5
+    v_lambda4 = vec4(lambda[16], lambda[17], lambda[18], lambda[19]);
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 6
+    v_lambda5 = vec4(lambda[20], lambda[21], lambda[22], lambda[23]);
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 7
+    v_lambda6 = vec4(lambda[24], lambda[25], lambda[26], lambda[27]);
+#endif
+#if DRAPE_LAMBDA_VEC4 >= 8
+    v_lambda7 = vec4(lambda[28], lambda[29], lambda[30], lambda[31]);
+#endif
+#endif
+#endif
+}

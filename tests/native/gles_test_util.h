@@ -1,0 +1,110 @@
+// Headless OpenGL ES for tests: Mesa's surfaceless EGL platform, an ES 3.0 context (strict with
+// MESA_GLES_VERSION_OVERRIDE=3.0, set here before EGL starts and by ctest), a 1x1 FBO bound.
+// Under CI=true a missing context is a failure; locally the GLES tests skip.
+#pragma once
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GLES3/gl3.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+namespace drape_test {
+
+class HeadlessGles {
+public:
+    /// Creates the display + context (not current). Empty string on success.
+    std::string create() {
+        setenv("MESA_GLES_VERSION_OVERRIDE", "3.0", 0);
+        auto get_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+        if (!get_display) return "eglGetPlatformDisplayEXT missing";
+        display_ = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        if (display_ == EGL_NO_DISPLAY) return "no surfaceless EGL display";
+        if (!eglInitialize(display_, nullptr, nullptr)) return "eglInitialize failed";
+        eglBindAPI(EGL_OPENGL_ES_API);
+        const EGLint config_attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_ES3_BIT, EGL_NONE};
+        EGLConfig config;
+        EGLint count = 0;
+        if (!eglChooseConfig(display_, config_attribs, &config, 1, &count) || count == 0) return "no ES3 EGL config";
+        const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 0, EGL_NONE};
+        context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, context_attribs);
+        if (context_ == EGL_NO_CONTEXT) return "eglCreateContext failed";
+        return {};
+    }
+    /// Makes the context current on this thread with a 1x1 FBO bound (the default framebuffer
+    /// of a surfaceless context is incomplete).
+    bool make_current() {
+        if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) return false;
+        if (!fbo_) {
+            glGenRenderbuffers(1, &rbo_);
+            glBindRenderbuffer(GL_RENDERBUFFER, rbo_);
+            glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 1, 1);
+            glGenFramebuffers(1, &fbo_);
+            glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+            glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rbo_);
+        }
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+        return true;
+    }
+    void release_current() { eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT); }
+    void destroy() {
+        if (context_ != EGL_NO_CONTEXT) {
+            make_current();
+            glDeleteFramebuffers(1, &fbo_);
+            glDeleteRenderbuffers(1, &rbo_);
+            fbo_ = rbo_ = 0;
+            release_current();
+            eglDestroyContext(display_, context_);
+        }
+        context_ = EGL_NO_CONTEXT;
+        if (display_ != EGL_NO_DISPLAY) eglTerminate(display_);
+        display_ = EGL_NO_DISPLAY;
+    }
+
+private:
+    EGLDisplay display_ = EGL_NO_DISPLAY;
+    EGLContext context_ = EGL_NO_CONTEXT;
+    GLuint fbo_ = 0, rbo_ = 0;
+};
+
+inline bool running_in_ci() {
+    const char* ci = std::getenv("CI");
+    return ci && std::strcmp(ci, "true") == 0;
+}
+
+/// Fails under CI=true, skips otherwise.
+#define DRAPE_GLES_UNAVAILABLE(why)                                                          \
+    do {                                                                                     \
+        if (drape_test::running_in_ci()) FAIL() << "no headless GLES context (CI=true): " << (why); \
+        GTEST_SKIP() << "no headless GLES context: " << (why);                               \
+    } while (0)
+
+/// Counts live GL object names 1..limit of each kind (glIs*): a leak check.
+struct GlNameCounts {
+    int buffers = 0, textures = 0, programs = 0, vertex_arrays = 0, framebuffers = 0, renderbuffers = 0;
+    static GlNameCounts take(GLuint limit = 4096) {
+        GlNameCounts c;
+        for (GLuint n = 1; n <= limit; ++n) {
+            c.buffers += glIsBuffer(n);
+            c.textures += glIsTexture(n);
+            c.programs += glIsProgram(n);
+            c.vertex_arrays += glIsVertexArray(n);
+            c.framebuffers += glIsFramebuffer(n);
+            c.renderbuffers += glIsRenderbuffer(n);
+        }
+        return c;
+    }
+    bool operator==(const GlNameCounts& o) const {
+        return buffers == o.buffers && textures == o.textures && programs == o.programs &&
+               vertex_arrays == o.vertex_arrays && framebuffers == o.framebuffers && renderbuffers == o.renderbuffers;
+    }
+};
+inline std::ostream& operator<<(std::ostream& os, const GlNameCounts& c) {
+    return os << "{buffers " << c.buffers << ", textures " << c.textures << ", programs " << c.programs << ", vaos "
+              << c.vertex_arrays << ", fbos " << c.framebuffers << ", rbos " << c.renderbuffers << "}";
+}
+
+}  // namespace drape_test

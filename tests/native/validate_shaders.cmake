@@ -1,0 +1,48 @@
+# Validates every shaders/*.glsl with glslangValidator (GLSL ES 300, no -V), and each variant the
+# GLES backend compiles (same #defines as GlesCloth::variant_defines / output_program).
+# Inputs: VALIDATOR, SHADER_DIR.
+set(failures 0)
+function(check file stage)
+  execute_process(COMMAND ${VALIDATOR} -l -S ${stage} ${ARGN} ${SHADER_DIR}/${file}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(SEND_ERROR "glslangValidator ${file} ${ARGN}:\n${out}${err}")
+  else()
+    message(STATUS "ok: ${file} ${ARGN}")
+  endif()
+endfunction()
+
+file(GLOB shaders RELATIVE ${SHADER_DIR} ${SHADER_DIR}/*.glsl)
+foreach(f IN LISTS shaders)
+  if(f MATCHES "\\.vert\\.glsl$")
+    check(${f} vert)
+  elseif(f MATCHES "\\.frag\\.glsl$")
+    check(${f} frag)
+  else()
+    message(SEND_ERROR "${f}: name it <name>.vert.glsl or <name>.frag.glsl")
+  endif()
+endforeach()
+
+# Simulation variants: pass x model x kinematic, grid (12 slots) and a mesh row of 32 slots.
+foreach(slots 12 32)
+  math(EXPR lambdas "(${slots} + 3) / 4")
+  math(EXPR record "1 + ${lambdas}")
+  foreach(kin "" "-DDRAPE_KINEMATIC")
+    check(sim.vert.glsl vert -DDRAPE_PASS_MASS_SPRING -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=1 ${kin})
+    check(sim.vert.glsl vert -DDRAPE_PASS_PREDICT -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=1 ${kin})
+    check(sim.vert.glsl vert -DDRAPE_PASS_PREDICT -DDRAPE_DASHPOT -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=1 ${kin})
+    check(sim.vert.glsl vert -DDRAPE_PASS_PREDICT -DDRAPE_XPBD -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=${record}
+          -DDRAPE_LAMBDA_VEC4=${lambdas} ${kin})
+  endforeach()
+  foreach(commit "" "-DDRAPE_COMMIT")
+    check(sim.vert.glsl vert -DDRAPE_PASS_CONSTRAINT -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=1 ${commit})
+    check(sim.vert.glsl vert -DDRAPE_PASS_CONSTRAINT -DDRAPE_XPBD -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=${record}
+          -DDRAPE_LAMBDA_VEC4=${lambdas} ${commit})
+  endforeach()
+endforeach()
+# Output variants: position only, normal only, both with copied-through bytes.
+check(output.vert.glsl vert -DDRAPE_WRITE_POSITION)
+check(output.vert.glsl vert -DDRAPE_WRITE_NORMAL -DDRAPE_RECORD=4)
+check(output.vert.glsl vert -DDRAPE_WRITE_POSITION -DDRAPE_WRITE_NORMAL
+      "-DDRAPE_KEEP_DECLS=in uint a_keep0\\; flat out uint v_keep0\\; in uvec3 a_keep1\\; flat out uvec3 v_keep1\\;"
+      "-DDRAPE_KEEP_COPY=v_keep0 = a_keep0\\; v_keep1 = a_keep1\\;")
