@@ -6,6 +6,7 @@ packages=(
   libeigen3-dev libglm-dev libgtest-dev googletest
   libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
   glslang-tools libstb-dev python3-matplotlib
+  imagemagick  # issue 3: demo GIFs
 )
 missing=()
 for p in "${packages[@]}"; do
