@@ -142,8 +142,11 @@ void Cloth::interaction_substep(uint32_t sub, uint32_t substeps) {
     Particle* x = buffers_[cur_].data();
     const Particle* start = buffers_[prev_].data();  // this substep's start
 
-    // Touch drag: the step's displacement in equal parts per substep (velocity = finger speed).
-    if (!ix_.drag_particles.empty()) {
+    // Touch drag: 1/substeps of the step's displacement in the first substep gives the vertex
+    // the finger's velocity (offset / dt); inertia carries it the rest of the way, so a free
+    // vertex ends the step displaced by exactly the offset. (Adding a share in every substep
+    // would accumulate: 1/S + 2/S + ... = (S+1)/2 times the offset.)
+    if (sub == 0 && !ix_.drag_particles.empty()) {
         const float part = 1.0f / float(substeps);
         for (uint32_t i : ix_.drag_particles)
             if (x[i].w != 0.0f) x[i] += Particle(ix_.drag_offset[i] * part, 0.0f);

@@ -109,27 +109,40 @@ inline void collide(const CollideShape* shapes, uint32_t shape_count, const glm:
             glm::vec3 q = p1;    // resolved local position
             glm::vec3 n = n1;    // contact normal
             bool contact = false;
-            if (d0 > 0 && len > d0) {
-                // Started outside and could have reached the surface: sphere-trace p0 -> p1.
-                float t = 0.0f, d = d0;
-                const glm::vec3 dir = seg / len;
-                glm::vec3 nh = n0;
-                for (int it = 0; it < kSweepIterations && d > 1e-6f && t < len; ++it) {
-                    t += d;
-                    if (t >= len) break;
-                    d = shape_distance(c.shape, c.size, p0 + dir * t, &nh) - c.margin;
+            bool entered = false;  // the motion entered the shape at h with normal n
+            glm::vec3 h;
+            if (d0 > 0) {
+                if (len > d0) {
+                    // Started outside and could have reached the surface: sphere-trace p0 -> p1.
+                    float t = 0.0f, d = d0;
+                    const glm::vec3 dir = seg / len;
+                    glm::vec3 nh = n0;
+                    for (int it = 0; it < kSweepIterations && d > 1e-6f && t < len; ++it) {
+                        t += d;
+                        if (t >= len) break;
+                        d = shape_distance(c.shape, c.size, p0 + dir * t, &nh) - c.margin;
+                    }
+                    if (t < len) {
+                        entered = true;
+                        h = p0 + dir * t;
+                        n = nh;
+                    }
                 }
-                if (t < len) {  // entered at h with normal nh: back onto the tangent plane there
-                    const glm::vec3 h = p0 + dir * t;
-                    n = nh;
-                    q = p1 + std::fmax(0.0f, -glm::dot(p1 - h, n)) * n;
-                    glm::vec3 nq;
-                    const float dq = shape_distance(c.shape, c.size, q, &nq) - c.margin;
-                    if (dq < 0) q = glm::dot(nq, n) > 0 ? q - dq * nq : h;  // curved surface: onto it
-                    contact = true;
-                }
+            } else {
+                // Started in contact (or inside): its side is the one of the nearest surface point;
+                // a motion that crosses that tangent plane inwards is a contact even if it ends
+                // outside on the far side (it went through).
+                h = p0 - d0 * n0;
+                entered = glm::dot(p1 - h, n0) < 0;
+                if (entered) n = n0;
             }
-            if (!contact && d1 < 0) {  // inside (already at the start, or no crossing found)
+            if (entered) {  // back onto the tangent plane at the entry point
+                q = p1 + std::fmax(0.0f, -glm::dot(p1 - h, n)) * n;
+                glm::vec3 nq;
+                const float dq = shape_distance(c.shape, c.size, q, &nq) - c.margin;
+                if (dq < 0) q = glm::dot(nq, n) > 0 ? q - dq * nq : h;  // curved surface: onto it
+                contact = true;
+            } else if (d1 < 0) {  // inside, no crossing found: out along the nearest normal
                 q = p1 - d1 * n1;
                 contact = true;
             }

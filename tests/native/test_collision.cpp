@@ -1,0 +1,300 @@
+// Colliders (issue 5): resting contact without penetration on every shape, fast colliders do not
+// tunnel, friction holds a cloth on a box corner, no/far colliders change nothing, bad input.
+// Penetration is measured here with the test's own distance functions (not the library's).
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "drape_test_util.h"
+
+using namespace drape_test;
+
+namespace {
+
+drape_collider collider(drape_collider_shape shape, float x, float y, float z, float s0 = 0, float s1 = 0,
+                        float s2 = 0) {
+    drape_collider c{};
+    c.struct_size = sizeof c;
+    c.shape = shape;
+    c.position[0] = x;
+    c.position[1] = y;
+    c.position[2] = z;
+    c.rotation[3] = 1;
+    c.size[0] = s0;
+    c.size[1] = s1;
+    c.size[2] = s2;
+    c.margin = 0.01f;
+    c.friction = 0.5f;
+    return c;
+}
+
+// Quaternion for an angle (rad) about a unit axis.
+void set_rotation(drape_collider& c, float ax, float ay, float az, float angle) {
+    const float s = std::sin(angle / 2);
+    c.rotation[0] = ax * s;
+    c.rotation[1] = ay * s;
+    c.rotation[2] = az * s;
+    c.rotation[3] = std::cos(angle / 2);
+}
+
+// Rotate v by the inverse of quaternion q (x,y,z,w): world -> local.
+void to_local(const float q[4], const float v[3], float out[3]) {
+    const float x = -q[0], y = -q[1], z = -q[2], w = q[3];
+    // t = 2 cross(q.xyz, v); v' = v + w t + cross(q.xyz, t)
+    const float t0 = 2 * (y * v[2] - z * v[1]), t1 = 2 * (z * v[0] - x * v[2]), t2 = 2 * (x * v[1] - y * v[0]);
+    out[0] = v[0] + w * t0 + (y * t2 - z * t1);
+    out[1] = v[1] + w * t1 + (z * t0 - x * t2);
+    out[2] = v[2] + w * t2 + (x * t1 - y * t0);
+}
+
+// Signed distance of a world point from the collider's true surface (no margin).
+float surface_distance(const drape_collider& c, const float* p) {
+    const float d[3] = {p[0] - c.position[0], p[1] - c.position[1], p[2] - c.position[2]};
+    float l[3];
+    to_local(c.rotation, d, l);
+    switch (c.shape) {
+    case DRAPE_COLLIDER_SPHERE: return std::sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]) - c.size[0];
+    case DRAPE_COLLIDER_CAPSULE: {
+        const float y = l[1] - std::clamp(l[1], -c.size[1], c.size[1]);
+        return std::sqrt(l[0] * l[0] + y * y + l[2] * l[2]) - c.size[0];
+    }
+    case DRAPE_COLLIDER_BOX: {
+        float q[3], outside = 0, inside = -1e30f;
+        for (int a = 0; a < 3; ++a) {
+            q[a] = std::fabs(l[a]) - c.size[a];
+            outside += std::max(q[a], 0.0f) * std::max(q[a], 0.0f);
+            inside = std::max(inside, q[a]);
+        }
+        return outside > 0 ? std::sqrt(outside) : inside;
+    }
+    default: return l[1];
+    }
+}
+
+// Deepest point of the cloth below the collider's surface + margin (m; 0 = none).
+float max_penetration(const drape_collider& c, const std::vector<float>& x) {
+    float worst = 0;
+    for (size_t v = 0; v < x.size() / 3; ++v) worst = std::max(worst, c.margin - surface_distance(c, &x[3 * v]));
+    return worst;
+}
+
+drape_params xpbd() {
+    drape_params p{};
+    drape_params_default(&p);
+    return p;
+}
+
+// A horizontal square cloth of `size` m with n x n vertices centred at (cx, y, cz).
+drape_cloth* horizontal_cloth(drape_world* w, uint32_t n, float size, float cx, float y, float cz,
+                              drape_backend backend = DRAPE_BACKEND_CPU) {
+    drape_grid_desc g = grid_desc(n, n, size, size);
+    g.origin[0] = cx - size / 2;
+    g.origin[1] = y;
+    g.origin[2] = cz + size / 2;  // axis_v defaults to -z
+    return make_grid(w, g, 0.2f, backend);
+}
+
+}  // namespace
+
+// A cloth dropped on each shape comes to rest on it: no vertex ends closer to the surface than the
+// margin (the collision pass is the last thing a substep does), and the cloth did not fall past.
+TEST(Collision, RestingContactWithoutPenetrationOnEveryShape) {
+    drape_collider tilted_plane = collider(DRAPE_COLLIDER_PLANE, 0, 0, 0);
+    set_rotation(tilted_plane, 0, 0, 1, 0.3f);
+    tilted_plane.friction = 1.0f;  // tan(0.3) = 0.31 < mu: stays
+    drape_collider capsule = collider(DRAPE_COLLIDER_CAPSULE, 0, 0, 0, 0.15f, 0.3f);
+    set_rotation(capsule, 0, 0, 1, 1.5707963f);  // lying along x
+    drape_collider box = collider(DRAPE_COLLIDER_BOX, 0, 0, 0, 0.2f, 0.2f, 0.2f);
+    set_rotation(box, 0, 1, 0, 0.4f);
+    const drape_collider shapes[] = {collider(DRAPE_COLLIDER_SPHERE, 0, 0, 0, 0.3f), capsule, box, tilted_plane};
+    const char* names[] = {"sphere", "capsule", "box", "tilted plane"};
+    for (drape_backend backend : {DRAPE_BACKEND_CPU, DRAPE_BACKEND_CPU_THREADED})
+        for (int s = 0; s < 4; ++s) {
+            WorldPtr w = make_world();
+            drape_cloth* c = horizontal_cloth(w.get(), 25, 1.0f, 0, 0.5f, 0, backend);
+            ASSERT_DRAPE_OK(drape_cloth_set_colliders(c, &shapes[s], 1));
+            float worst = 0;
+            for (int f = 0; f < 180; ++f) {  // 3 s
+                ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
+                worst = std::max(worst, max_penetration(shapes[s], positions(c)));
+            }
+            const std::vector<float> x = positions(c);
+            // Centre vertex rests on top: within 2 cm above the surface + margin.
+            const uint32_t mid = 12 * 25 + 12;
+            const float gap = surface_distance(shapes[s], &x[3 * mid]) - shapes[s].margin;
+            std::printf("[ measured ] %-12s backend %u: max penetration %.2e m over 3 s, centre gap %.4f m, "
+                        "max strain %.3f\n", names[s], backend, worst, gap, stats_of(c).max_strain);
+            EXPECT_LE(worst, 1e-5f) << names[s];
+            EXPECT_GE(gap, -1e-5f) << names[s];
+            EXPECT_LE(gap, 0.02f) << names[s] << ": the cloth should lie on the shape";
+            // Sanity only: sharp box edges stretch the draped cloth locally (measured 0.31).
+            EXPECT_LT(stats_of(c).max_strain, 0.5f) << names[s];
+        }
+}
+
+// S8: a sphere of radius r punched up through a free horizontal cloth (no gravity) at 2, 5, 10
+// and 20 radii per frame (up to 180 m/s: at 20 r/frame it starts 0.6 m below the cloth and is
+// 0.1 m above it one frame later), with 4 substeps and with 1; then it stops and the cloth settles
+// for half a second. A vertex of the sphere's footprint "tunnelled" if it ends below the sphere's
+// centre (it went through instead of being carried on top).
+TEST(Collision, FastSphereDoesNotTunnel) {
+    const float r = 0.15f, stop = 0.1f;
+    for (uint32_t substeps : {4u, 1u})
+        for (float radii_per_frame : {2.0f, 5.0f, 10.0f, 20.0f}) {
+            WorldPtr w = make_world();
+            drape_cloth* c = horizontal_cloth(w.get(), 21, 1.0f, 0, 0, 0);
+            drape_params p = xpbd();
+            p.gravity[1] = 0;
+            p.substeps = substeps;
+            ASSERT_DRAPE_OK(drape_cloth_set_params(c, &p));
+            const std::vector<float> x0 = positions(c);
+            drape_collider s = collider(DRAPE_COLLIDER_SPHERE, 0, -0.5f, 0, r);
+            s.friction = 0;
+            ASSERT_DRAPE_OK(drape_cloth_set_colliders(c, &s, 1));
+            const float move = radii_per_frame * r;
+            uint32_t unstable = 0;
+            for (int f = 0; f < 60; ++f) {
+                s.position[1] = std::min(stop, s.position[1] + move);
+                ASSERT_DRAPE_OK(drape_cloth_set_colliders(c, &s, 1));
+                const drape_status st = drape_cloth_step(c, 1.0f / 60);
+                ASSERT_TRUE(st == DRAPE_OK || st == DRAPE_ERROR_UNSTABLE) << drape_last_error();
+                unstable += st != DRAPE_OK;
+            }
+            const std::vector<float> x = positions(c);
+            int footprint = 0, tunnelled = 0;
+            for (size_t v = 0; v < x.size() / 3; ++v) {
+                if (std::hypot(x0[3 * v], x0[3 * v + 2]) > 0.8f * r) continue;
+                ++footprint;
+                if (x[3 * v + 1] < s.position[1]) ++tunnelled;
+            }
+            std::printf("[ measured ] sphere %4.1f r/frame (%5.1f m/s), %u substeps: %d/%d footprint vertices "
+                        "tunnelled (%.1f%%), max penetration %.2e m, %u unstable steps\n",
+                        radii_per_frame, move * 60, substeps, tunnelled, footprint, 100.0 * tunnelled / footprint,
+                        max_penetration(s, x), unstable);
+            ASSERT_GT(footprint, 10);
+            EXPECT_EQ(tunnelled, 0);
+            EXPECT_EQ(unstable, 0u);
+            EXPECT_LE(max_penetration(s, x), 1e-5f);
+        }
+}
+
+// A cloth hanging over a box corner, more of it off the box than on it. With friction it stays
+// (the pull of the hanging part is below mu times the normal force); frictionless it slides off.
+TEST(Collision, FrictionHoldsAClothOnABoxCorner) {
+    float moved[2];
+    const float frictions[2] = {1.0f, 0.0f};
+    for (int k = 0; k < 2; ++k) {
+        WorldPtr w = make_world();
+        drape_collider box = collider(DRAPE_COLLIDER_BOX, 0, 0, 0, 0.25f, 0.25f, 0.25f);
+        box.friction = frictions[k];
+        // Cloth 1 m, centre at (0.1, 0.27, 0.1): 0.35 m hang off the +x/+z sides, 0.15 m off -x/-z.
+        drape_cloth* c = horizontal_cloth(w.get(), 33, 1.0f, 0.1f, 0.27f, 0.1f);
+        ASSERT_DRAPE_OK(drape_cloth_set_colliders(c, &box, 1));
+        const uint32_t mid = 16 * 33 + 16;
+        for (int f = 0; f < 60; ++f) ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));  // drape: 1 s
+        const std::vector<float> a = positions(c);
+        for (int f = 0; f < 180; ++f) ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));  // then 3 s more
+        const std::vector<float> b = positions(c);
+        moved[k] = std::hypot(b[3 * mid] - a[3 * mid], b[3 * mid + 2] - a[3 * mid + 2]);
+        std::printf("[ measured ] box corner, friction %.1f: centre slid %.4f m in 3 s (y %.3f)\n", frictions[k],
+                    moved[k], b[3 * mid + 1]);
+        EXPECT_LE(max_penetration(box, b), 1e-5f);
+    }
+    EXPECT_LT(moved[0], 0.01f) << "friction should hold the cloth";
+    EXPECT_GT(moved[1], 0.1f) << "without friction the heavier side pulls it off";
+}
+
+// Skipping: no colliders, an empty list, or colliders whose bounds do not touch the cloth's give
+// the same bits as a cloth that never heard of colliders (also while pinned and threaded).
+TEST(Collision, NoOrFarCollidersGiveBitIdenticalResults) {
+    for (drape_backend backend : {DRAPE_BACKEND_CPU, DRAPE_BACKEND_CPU_THREADED}) {
+        std::vector<float> result[3];
+        for (int k = 0; k < 3; ++k) {
+            WorldPtr w = make_world();
+            drape_cloth* c = horizontal_cloth(w.get(), 20, 1.0f, 0, 0, 0, backend);
+            drape_pin pin{sizeof pin, 0, {-0.5f, 0, 0.5f}};
+            ASSERT_DRAPE_OK(drape_cloth_set_pins(c, &pin, 1));
+            drape_collider far[4] = {collider(DRAPE_COLLIDER_SPHERE, 50, 0, 0, 1),
+                                     collider(DRAPE_COLLIDER_BOX, 0, 50, 0, 1, 1, 1),
+                                     collider(DRAPE_COLLIDER_CAPSULE, 0, 0, -50, 1, 2),
+                                     collider(DRAPE_COLLIDER_PLANE, 0, -50, 0)};
+            for (int i = 0; i < 4; ++i) far[i].id = uint32_t(i);
+            if (k == 1) ASSERT_DRAPE_OK(drape_cloth_set_colliders(c, nullptr, 0));
+            for (int f = 0; f < 60; ++f) {
+                if (k == 2) {
+                    far[0].position[0] -= 0.01f;  // moving, still far
+                    ASSERT_DRAPE_OK(drape_cloth_set_colliders(c, far, 4));
+                }
+                ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
+            }
+            result[k] = positions(c);
+        }
+        EXPECT_EQ(0, std::memcmp(result[0].data(), result[1].data(), result[0].size() * 4));
+        EXPECT_EQ(0, std::memcmp(result[0].data(), result[2].data(), result[0].size() * 4));
+    }
+}
+
+TEST(Collision, BadColliderInputIsRefusedAndChangesNothing) {
+    WorldPtr w = make_world();
+    drape_cloth* c = horizontal_cloth(w.get(), 10, 1.0f, 0, 0.2f, 0);
+    drape_cloth* ref = horizontal_cloth(w.get(), 10, 1.0f, 0, 0.2f, 0);
+    const drape_collider good = collider(DRAPE_COLLIDER_SPHERE, 0, 0, 0, 0.2f);
+    ASSERT_DRAPE_OK(drape_cloth_set_colliders(c, &good, 1));
+    ASSERT_DRAPE_OK(drape_cloth_set_colliders(ref, &good, 1));
+
+    auto expect = [&](drape_collider bad, drape_status status, const char* what) {
+        EXPECT_EQ(drape_cloth_set_colliders(c, &bad, 1), status) << what << ": " << drape_last_error();
+        EXPECT_STRNE(drape_last_error(), "") << what;
+    };
+    drape_collider b = good;
+    b.position[1] = NAN;
+    expect(b, DRAPE_ERROR_NOT_FINITE, "NaN position");
+    b = good;
+    b.rotation[0] = INFINITY;
+    expect(b, DRAPE_ERROR_NOT_FINITE, "infinite rotation");
+    b = good;
+    b.size[0] = 0;
+    expect(b, DRAPE_ERROR_INVALID_ARGUMENT, "zero radius");
+    b = collider(DRAPE_COLLIDER_BOX, 0, 0, 0, 1, -1, 1);
+    expect(b, DRAPE_ERROR_INVALID_ARGUMENT, "negative box size");
+    b = collider(DRAPE_COLLIDER_CAPSULE, 0, 0, 0, 0.1f, -0.5f);
+    expect(b, DRAPE_ERROR_INVALID_ARGUMENT, "negative capsule length");
+    b = good;
+    b.rotation[3] = 0.9f;
+    expect(b, DRAPE_ERROR_INVALID_ARGUMENT, "non-unit quaternion");
+    b = good;
+    b.shape = 4;
+    expect(b, DRAPE_ERROR_INVALID_ENUM, "bad shape");
+    b = good;
+    b.margin = -0.1f;
+    expect(b, DRAPE_ERROR_INVALID_ARGUMENT, "negative margin");
+    b = good;
+    b.friction = NAN;
+    expect(b, DRAPE_ERROR_NOT_FINITE, "NaN friction");
+    b = good;
+    b.struct_size = 8;
+    expect(b, DRAPE_ERROR_STRUCT_SIZE, "struct_size");
+    b = good;
+    b.position[0] = 1e7f;
+    expect(b, DRAPE_ERROR_INVALID_ARGUMENT, "absurd position");
+
+    std::vector<drape_collider> many(DRAPE_MAX_COLLIDERS + 1, good);
+    for (size_t k = 0; k < many.size(); ++k) many[k].id = uint32_t(k);
+    EXPECT_EQ(drape_cloth_set_colliders(c, many.data(), uint32_t(many.size())), DRAPE_ERROR_INVALID_ARGUMENT);
+    many[1].id = 0;
+    EXPECT_EQ(drape_cloth_set_colliders(c, many.data(), 2), DRAPE_ERROR_INVALID_ARGUMENT) << "duplicate id";
+    many[1] = good;
+    many[1].id = 1;
+    many[1].size[0] = -1;  // second element bad: the first must not be applied either
+    EXPECT_EQ(drape_cloth_set_colliders(c, many.data(), 2), DRAPE_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(drape_cloth_set_colliders(c, nullptr, 1), DRAPE_ERROR_NULL_POINTER);
+    EXPECT_EQ(drape_cloth_set_colliders(nullptr, &good, 1), DRAPE_ERROR_NULL_POINTER);
+
+    // Nothing changed: the cloth still has exactly `good` and behaves like ref.
+    for (int f = 0; f < 30; ++f) {
+        ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
+        ASSERT_DRAPE_OK(drape_cloth_step(ref, 1.0f / 60));
+    }
+    const std::vector<float> a = positions(c), r = positions(ref);
+    EXPECT_EQ(0, std::memcmp(a.data(), r.data(), a.size() * 4));
+}
