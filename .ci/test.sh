@@ -6,3 +6,5 @@ ctest --preset release
 
 # C#: package checks, Unity compile checks, NUnit tests of Drape.Core (issue 4).
 bash .ci/dotnet-test.sh
+# Benchmark smoke run (quick mode, < 1 min): keeps drape_bench and its plots working; no timing checks.
+bash tests/bench/run.sh --quick --out build/release/bench-quick

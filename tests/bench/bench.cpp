@@ -1,0 +1,915 @@
+// drape_bench: run time against error, stability stress and the paper's measurements
+// (docs/accuracy.md; issues 2 and 6). Uses the library through the C ABI only and writes CSV
+// files into --out; tests/bench/plot.py turns them into PNGs and REPORT.md.
+//
+//   drape_bench [--quick] [--out DIR] [--only a,b,...] [--threads N]
+//   parts: throughput, threads, precision, stress, vibration
+//
+// Timings are wall-clock medians over repeated steps of one run on a shared machine; they are
+// numbers to compare within one run, never assertions.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <vector>
+
+#include "drape/drape.h"
+#include "reference.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kG = 9.81;
+
+// ---------------------------------------------------------------------------------------------
+// Options, output, progress
+
+struct Options {
+    std::string out = "bench-out";
+    bool quick = false;
+    std::set<std::string> only;
+    uint32_t threads = 2;  ///< CPU_THREADED workers (including the caller); this machine has 2 cores
+    bool wants(const char* part) const { return only.empty() || only.count(part); }
+};
+
+class Csv {
+public:
+    Csv(const std::string& path, const char* header) : f_(std::fopen(path.c_str(), "w")) {
+        if (!f_) {
+            std::fprintf(stderr, "drape_bench: cannot write %s\n", path.c_str());
+            std::exit(1);
+        }
+        std::fprintf(f_, "%s\n", header);
+    }
+    ~Csv() { std::fclose(f_); }
+    template <class... A>
+    void row(const char* fmt, A... a) {
+        std::fprintf(f_, fmt, a...);
+        std::fputc('\n', f_);
+        std::fflush(f_);
+    }
+
+private:
+    FILE* f_;
+};
+
+/// One line rewritten in place on a terminal; every 10% as its own line in a log.
+class Progress {
+public:
+    void start(const std::string& phase, int total) {
+        phase_ = phase;
+        total_ = std::max(total, 1);
+        done_ = 0;
+        last_decile_ = -1;
+        show("");
+    }
+    void tick(const std::string& label) {
+        ++done_;
+        show(label);
+    }
+    void finish() {
+        if (tty_) std::fputc('\n', stderr);
+    }
+
+private:
+    void show(const std::string& label) {
+        const double t = std::chrono::duration<double>(Clock::now() - t0_).count();
+        const int decile = 10 * done_ / total_;
+        if (!tty_ && decile == last_decile_) return;
+        last_decile_ = decile;
+        std::fprintf(stderr, "%s[drape_bench %6.1fs] %-10s %3d/%-3d %-44.44s%s", tty_ ? "\r" : "", t, phase_.c_str(),
+                     done_, total_, label.c_str(), tty_ ? "" : "\n");
+        std::fflush(stderr);
+    }
+    std::string phase_;
+    int total_ = 1, done_ = 0, last_decile_ = -1;
+    bool tty_ = isatty(2) != 0;
+    Clock::time_point t0_ = Clock::now();
+};
+
+Progress g_progress;
+
+double median(std::vector<double> v) {
+    if (v.empty()) return NAN;
+    std::sort(v.begin(), v.end());
+    size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::string fmt(const char* f, double v) {
+    char b[64];
+    std::snprintf(b, sizeof b, f, v);
+    return b;
+}
+
+const char* model_name(uint32_t m) {
+    return m == DRAPE_MODEL_MASS_SPRING ? "mass_spring" : m == DRAPE_MODEL_PBD ? "pbd" : "xpbd";
+}
+const char* backend_name(uint32_t b) {
+    return b == DRAPE_BACKEND_CPU ? "cpu" : b == DRAPE_BACKEND_CPU_THREADED ? "cpu_threaded" : "gles";
+}
+const uint32_t kModels[] = {DRAPE_MODEL_MASS_SPRING, DRAPE_MODEL_PBD, DRAPE_MODEL_XPBD};
+
+void die_on(drape_status s, const char* what) {
+    if (s == DRAPE_OK) return;
+    std::fprintf(stderr, "\ndrape_bench: %s failed (status %d): %s\n", what, int(s), drape_last_error());
+    std::exit(1);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scenes
+
+enum class Pins { None, TwoTopCorners, TopVertex };
+
+/// One world holding one cloth; destroyed together.
+struct Sim {
+    drape_world* world = nullptr;
+    drape_cloth* cloth = nullptr;
+    uint32_t cols = 0, rows = 0, vertices = 0;
+    double size = 1.0;   ///< m, cloth (or chain) extent
+    double mass = 0.0;   ///< kg, total simulated mass
+    std::vector<float> inv_mass;
+    ~Sim() {
+        if (world) drape_world_destroy(world);
+    }
+    std::vector<float> positions() const {
+        std::vector<float> out(size_t(vertices) * 3);
+        drape_vertex_layout l{};
+        l.struct_size = sizeof l;
+        l.stride = 12;
+        l.position_offset = 0;
+        l.normal_offset = -1;
+        die_on(drape_cloth_read(cloth, &l, out.data(), out.size() * sizeof(float)), "drape_cloth_read");
+        return out;
+    }
+    drape_stats stats() const {
+        drape_stats s{};
+        s.struct_size = sizeof s;
+        die_on(drape_cloth_get_stats(cloth, &s), "drape_cloth_get_stats");
+        return s;
+    }
+    void set_params(const drape_params& p) { die_on(drape_cloth_set_params(cloth, &p), "drape_cloth_set_params"); }
+    void set_positions(const std::vector<float>& x) {
+        die_on(drape_cloth_set_positions(cloth, x.data(), vertices), "drape_cloth_set_positions");
+    }
+    void set_inverse_masses(const std::vector<float>& w) {
+        inv_mass = w;
+        die_on(drape_cloth_set_inverse_masses(cloth, w.data(), vertices), "drape_cloth_set_inverse_masses");
+    }
+};
+
+struct GridSpec {
+    uint32_t cols = 32, rows = 32;
+    double width = 1.0, height = 1.0;
+    double mass = 0.2;  ///< kg: a 1 m^2 cloth of 200 g/m^2
+    bool vertical = true;  ///< in the x-y plane hanging down (-y); false: horizontal (x-z plane)
+    Pins pins = Pins::TwoTopCorners;
+    uint32_t backend = DRAPE_BACKEND_CPU;
+    uint32_t threads = 2;
+};
+
+/// Uniform particle masses (set explicitly, so the double-precision reference is the same
+/// system); pinned vertices get inverse mass 0 where they are.
+std::unique_ptr<Sim> make_grid(const GridSpec& s) {
+    auto sim = std::make_unique<Sim>();
+    drape_world_desc wd{};
+    wd.struct_size = sizeof wd;
+    wd.thread_count = s.threads;
+    die_on(drape_world_create(&wd, &sim->world), "drape_world_create");
+    drape_cloth_desc cd{};
+    cd.struct_size = sizeof cd;
+    cd.backend = s.backend;
+    cd.total_mass = float(s.mass);
+    drape_grid_desc g{};
+    g.struct_size = sizeof g;
+    g.columns = s.cols;
+    g.rows = s.rows;
+    g.width = float(s.width);
+    g.height = float(s.height);
+    g.axis_u[0] = 1.0f;
+    if (s.vertical) g.axis_v[1] = -1.0f;
+    else g.axis_v[2] = -1.0f;
+    die_on(drape_cloth_create_grid(sim->world, &cd, &g, &sim->cloth), "drape_cloth_create_grid");
+    sim->cols = s.cols;
+    sim->rows = s.rows;
+    sim->vertices = s.cols * s.rows;
+    sim->size = std::max(s.width, s.height);
+    sim->mass = s.mass;
+    std::vector<float> w(sim->vertices, float(sim->vertices / s.mass));
+    if (s.pins == Pins::TwoTopCorners) w[0] = w[s.cols - 1] = 0.0f;
+    if (s.pins == Pins::TopVertex) w[0] = 0.0f;
+    sim->set_inverse_masses(w);
+    return sim;
+}
+
+/// Material per model: the library defaults (2000, 1000, 200 N/m) scaled by `scale` for the
+/// physical models; PBD takes fractions per iteration (1, 0.5, 0.1) times `scale` (<= 1).
+drape_params params_for(uint32_t model, double scale = 1.0) {
+    drape_params p{};
+    die_on(drape_params_default(&p), "drape_params_default");
+    p.model = model;
+    const float ratio[3] = {1.0f, 0.5f, 0.1f};
+    for (int gi = 0; gi < 3; ++gi)
+        p.stiffness[gi] = model == DRAPE_MODEL_PBD ? float(std::min(1.0, scale * ratio[gi])) : float(2000.0 * scale * ratio[gi]);
+    return p;
+}
+
+/// Times one step (wall clock around the C call).
+double timed_step(Sim& s, float dt, drape_status* st) {
+    auto t0 = Clock::now();
+    *st = drape_cloth_step(s.cloth, dt);
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+/// Failure criteria of accuracy.md ("Exploded"), checked after every step.
+struct Monitor {
+    double v_limit = 0, bbox0 = 0, e0 = 0, e_scale = 0, energy_growth = 0;
+    bool energy_check = false;
+    std::vector<float> prev;
+    std::string criterion;
+    double t_fail = -1;
+    float max_strain = 0;
+
+    static double bbox_diag(const std::vector<float>& x) {
+        double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (size_t i = 0; i < x.size(); ++i) {
+            lo[i % 3] = std::min(lo[i % 3], double(x[i]));
+            hi[i % 3] = std::max(hi[i % 3], double(x[i]));
+        }
+        return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    }
+    static double energy(const drape_stats& s) { return double(s.kinetic_energy) + s.potential_energy + s.elastic_energy; }
+
+    /// Call after the scene is set up, before the first step. The speed limit is
+    /// 10 x (sqrt(2 g H) + the speed the initial elastic/kinetic energy could give the mass).
+    void begin(const Sim& s, uint32_t model) {
+        prev = s.positions();
+        bbox0 = std::max(bbox_diag(prev), 1e-3);
+        const drape_stats st = s.stats();
+        e0 = energy(st);
+        const double stored = double(st.elastic_energy) + st.kinetic_energy;
+        double mass = 0;  // simulated mass, pinned particles excluded
+        for (float w : s.inv_mass)
+            if (w > 0) mass += 1.0 / w;
+        v_limit = 10.0 * (std::sqrt(2.0 * kG * s.size) + std::sqrt(2.0 * stored / mass));
+        e_scale = mass * kG * s.size + stored;
+        energy_check = model != DRAPE_MODEL_PBD;  // PBD reports no elastic energy
+    }
+    /// false once failed (criterion and t_fail set).
+    bool after_step(const Sim& s, drape_status st, float dt, double t) {
+        if (!criterion.empty()) return false;
+        if (st == DRAPE_ERROR_UNSTABLE) return fail("library rollback (non-finite or strain>10)", t);
+        if (st != DRAPE_OK) return fail(std::string("status ") + std::to_string(int(st)), t);
+        std::vector<float> x = s.positions();
+        double vmax = 0;
+        for (size_t i = 0; i < x.size(); ++i)
+            if (!std::isfinite(x[i])) return fail("non-finite output", t);
+        for (size_t i = 0; i < x.size(); i += 3) {
+            double dx = x[i] - prev[i], dy = x[i + 1] - prev[i + 1], dz = x[i + 2] - prev[i + 2];
+            vmax = std::max(vmax, std::sqrt(dx * dx + dy * dy + dz * dz) / dt);
+        }
+        prev.swap(x);
+        const drape_stats ss = s.stats();
+        max_strain = std::max(max_strain, ss.max_strain);
+        if (vmax > v_limit) return fail("speed > limit", t);
+        if (bbox_diag(prev) > 10.0 * bbox0) return fail("bounding box > 10x", t);
+        // Growth beyond the work put in: recorded as a fraction of the energy scale; more than
+        // the whole scale (the energy at least doubles) counts as exploded.
+        if (energy_check) energy_growth = std::max(energy_growth, (energy(ss) - e0) / e_scale);
+        if (energy_growth > 1.0) return fail("energy growth > M g H + stored", t);
+        return true;
+    }
+    bool fail(const std::string& c, double t) {
+        criterion = c;
+        t_fail = t;
+        return false;
+    }
+};
+
+// ---------------------------------------------------------------------------------------------
+// 1. Throughput (issue 2 seed, paper Fig. 6) and thread sweep
+
+struct Timing {
+    double ms_median = NAN, ms_min = NAN, vit_per_s = NAN;
+    uint32_t steps = 0, substeps = 0, iterations = 0;
+    float max_strain = 0, rms_strain = 0;
+    bool ok = true;
+};
+
+/// Hanging cloth stepped at 60 Hz: 3 warm-up steps, then steps until both min_steps and
+/// min_seconds are reached (or max_seconds passed). Vertex-iterations = particles x substeps x
+/// iterations per substep (1 for MASS_SPRING).
+Timing time_cloth(Sim& s, double min_seconds, double max_seconds, uint32_t min_steps, int warmup = 3) {
+    Timing r;
+    const float dt = 1.0f / 60.0f;
+    drape_status st;
+    for (int i = 0; i < warmup; ++i) timed_step(s, dt, &st);
+    std::vector<double> ms;
+    double total = 0;
+    while ((ms.size() < min_steps || total < min_seconds * 1e3) && total < max_seconds * 1e3) {
+        ms.push_back(timed_step(s, dt, &st));
+        total += ms.back();
+        if (st != DRAPE_OK) r.ok = false;
+    }
+    drape_stats ss = s.stats();
+    r.steps = uint32_t(ms.size());
+    r.ms_median = median(ms);
+    r.ms_min = *std::min_element(ms.begin(), ms.end());
+    r.substeps = ss.substeps;
+    r.iterations = ss.iterations;
+    r.vit_per_s = double(s.vertices) * ss.substeps * ss.iterations / (r.ms_median * 1e-3);
+    r.max_strain = ss.max_strain;
+    r.rms_strain = ss.rms_strain;
+    return r;
+}
+
+std::vector<uint32_t> available_backends() {
+    std::vector<uint32_t> out;
+    for (uint32_t b : {DRAPE_BACKEND_CPU, DRAPE_BACKEND_CPU_THREADED, DRAPE_BACKEND_GLES}) {
+        uint32_t a = 0;
+        if (drape_backend_available(b, &a) == DRAPE_OK && a) out.push_back(b);
+    }
+    return out;
+}
+
+void run_throughput(const Options& o) {
+    const std::vector<uint32_t> sizes = o.quick ? std::vector<uint32_t>{16, 32} : std::vector<uint32_t>{32, 64, 128, 256};
+    const auto backends = available_backends();
+    Csv csv(o.out + "/throughput.csv",
+            "size,vertices,model,backend,threads,substeps,iterations,steps,ms_median,ms_min,vertex_iter_per_s,max_strain,rms_strain,ok");
+    g_progress.start("throughput", int(sizes.size() * 3 * backends.size()));
+    for (uint32_t n : sizes)
+        for (uint32_t m : kModels)
+            for (uint32_t b : backends) {
+                GridSpec gs;
+                gs.cols = gs.rows = n;
+                gs.backend = b;
+                gs.threads = o.threads;
+                auto sim = make_grid(gs);
+                sim->set_params(params_for(m));
+                // MASS_SPRING runs up to 1000 substeps per frame here: fewer steps (still a median).
+                const bool slow = m == DRAPE_MODEL_MASS_SPRING;
+                Timing t = o.quick ? time_cloth(*sim, 0.1, 1.0, slow ? 1 : 5, slow ? 0 : 2)
+                                   : time_cloth(*sim, 0.6, 4.0, slow ? 3 : 9, slow ? 1 : 3);
+                csv.row("%u,%u,%s,%s,%u,%u,%u,%u,%.4f,%.4f,%.4g,%.5g,%.5g,%d", n, sim->vertices, model_name(m),
+                        backend_name(b), b == DRAPE_BACKEND_CPU ? 1u : o.threads, t.substeps, t.iterations, t.steps,
+                        t.ms_median, t.ms_min, t.vit_per_s, t.max_strain, t.rms_strain, int(t.ok));
+                g_progress.tick(std::to_string(n) + "^2 " + model_name(m) + " " + backend_name(b) + " " +
+                                fmt("%.3g Mvit/s", t.vit_per_s * 1e-6));
+            }
+    g_progress.finish();
+}
+
+void run_threads(const Options& o) {
+    const std::vector<uint32_t> sizes = o.quick ? std::vector<uint32_t>{32} : std::vector<uint32_t>{64, 128, 256};
+    const uint32_t counts[] = {1, 2, 3, 4};
+    Csv csv(o.out + "/threads.csv", "size,vertices,model,backend,threads,ms_median,vertex_iter_per_s,speedup_vs_cpu");
+    g_progress.start("threads", int(sizes.size() * 5));
+    for (uint32_t n : sizes) {
+        double base_ms = NAN;
+        for (int k = -1; k < 4; ++k) {
+            GridSpec gs;
+            gs.cols = gs.rows = n;
+            gs.backend = k < 0 ? DRAPE_BACKEND_CPU : DRAPE_BACKEND_CPU_THREADED;
+            gs.threads = k < 0 ? 1 : counts[k];
+            auto sim = make_grid(gs);
+            sim->set_params(params_for(DRAPE_MODEL_XPBD));
+            Timing t = o.quick ? time_cloth(*sim, 0.1, 1.0, 5, 2) : time_cloth(*sim, 0.6, 4.0, 9);
+            if (k < 0) base_ms = t.ms_median;
+            csv.row("%u,%u,xpbd,%s,%u,%.4f,%.4g,%.3f", n, sim->vertices, backend_name(gs.backend), gs.threads,
+                    t.ms_median, t.vit_per_s, base_ms / t.ms_median);
+            g_progress.tick(std::to_string(n) + "^2 " + backend_name(gs.backend) + " x" + std::to_string(gs.threads));
+        }
+    }
+    g_progress.finish();
+}
+
+// ---------------------------------------------------------------------------------------------
+// 2. Work-precision
+
+struct Config {
+    uint32_t model, substeps, iterations;  ///< substeps 0 = automatic
+};
+
+std::vector<Config> precision_configs(const Options& o, bool chain) {
+    std::vector<Config> out;
+    const uint32_t max_pow = o.quick ? 16 : 64, max_cost = o.quick ? 16 : 256;
+    const bool quick_diag = o.quick;  // quick: only the equal-cost diagonals 4 and 16
+    for (uint32_t m : {DRAPE_MODEL_PBD, DRAPE_MODEL_XPBD})
+        for (uint32_t s = 1; s <= max_pow; s *= 2)
+            for (uint32_t i = 1; i <= max_pow; i *= 2)
+                if (s * i <= max_cost && (!quick_diag || s * i == 4 || s * i == 16)) out.push_back({m, s, i});
+    std::vector<uint32_t> ms = o.quick ? std::vector<uint32_t>{0, 64}
+                                       : std::vector<uint32_t>{0, 64, 128, 256, 512, 1000};
+    if (chain) ms = o.quick ? std::vector<uint32_t>{0} : std::vector<uint32_t>{0, 64, 256, 1000};
+    for (uint32_t s : ms) out.push_back({DRAPE_MODEL_MASS_SPRING, s, 1});
+    return out;
+}
+
+/// Cloth hanging from its two top corners in the x-y plane. Reference: the static equilibrium
+/// of the same springs, masses and pins, by Newton in double precision (reference.h). The
+/// simulation starts flat and unstretched and runs `seconds` at 60 Hz with the default damping;
+/// E2 is measured at the end. Energy drift comes from a second, undamped run (damping 0,
+/// air drag 0) over `energy_seconds`: max |E(t) - E(0)| / (M g H).
+void run_precision_cloth(const Options& o, Csv& csv) {
+    const uint32_t n = o.quick ? 12 : 32;
+    const double seconds = o.quick ? 1.0 : 3.0, energy_seconds = o.quick ? 0.25 : 1.0;
+    const float dt = 1.0f / 60.0f;
+    GridSpec gs;
+    gs.cols = gs.rows = n;
+    // Reference equilibrium.
+    const drape_params base = params_for(DRAPE_MODEL_XPBD);
+    const double k[3] = {base.stiffness[0], base.stiffness[1], base.stiffness[2]};
+    const double spacing = 1.0 / (n - 1);
+    auto springs = bench::grid_springs(n, n, spacing, spacing, k);
+    std::vector<double> xr(size_t(n) * n * 3), mass(size_t(n) * n, gs.mass / (n * n));
+    for (uint32_t r = 0; r < n; ++r)
+        for (uint32_t c = 0; c < n; ++c) {
+            xr[3 * (r * n + c)] = c * spacing;
+            xr[3 * (r * n + c) + 1] = -double(r) * spacing;
+        }
+    mass[0] = mass[n - 1] = 0;
+    const double g[3] = {0, -kG, 0};
+    const double res = bench::solve_static(xr, mass, springs, g);
+    double ref_strain = 0;
+    for (const auto& s : springs) {
+        if (s.k == k[2]) continue;  // drape's max_strain covers structural + shear
+        double d[3] = {xr[3 * s.i] - xr[3 * s.j], xr[3 * s.i + 1] - xr[3 * s.j + 1], xr[3 * s.i + 2] - xr[3 * s.j + 2]};
+        ref_strain = std::max(ref_strain, std::fabs(std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / s.rest - 1));
+    }
+    {
+        std::ofstream f(o.out + "/reference.csv", std::ios::app);
+        f << "two_corners," << n << "," << res << "," << ref_strain << "\n";
+    }
+    for (const Config& c : precision_configs(o, false)) {
+        drape_params p = params_for(c.model);
+        p.substeps = c.substeps;
+        p.iterations = c.iterations;
+        auto sim = make_grid(gs);
+        sim->set_params(p);
+        std::vector<double> ms;
+        bool ok = true;
+        drape_status st;
+        for (int step = 0; step < int(seconds * 60 + 0.5); ++step) {
+            ms.push_back(timed_step(*sim, dt, &st));
+            if (st != DRAPE_OK) ok = false;
+        }
+        const drape_stats ss = sim->stats();
+        const std::vector<float> x = sim->positions();
+        double e2 = 0;
+        for (size_t i = 0; i < x.size(); i += 3) {
+            double dx = x[i] - xr[i], dy = x[i + 1] - xr[i + 1], dz = x[i + 2] - xr[i + 2];
+            e2 = std::max(e2, std::sqrt(dx * dx + dy * dy + dz * dz));
+        }
+        // Undamped run for the energy drift.
+        drape_params pu = p;
+        pu.damping = 0;
+        pu.air_drag = 0;
+        auto su = make_grid(gs);
+        su->set_params(pu);
+        const double e0 = Monitor::energy(su->stats());
+        double drift = 0, drift_end = 0;
+        for (int step = 0; step < int(energy_seconds * 60 + 0.5); ++step) {
+            if (drape_cloth_step(su->cloth, dt) != DRAPE_OK) ok = false;
+            drift_end = (Monitor::energy(su->stats()) - e0) / (gs.mass * kG * gs.height);
+            drift = std::max(drift, std::fabs(drift_end));
+        }
+        csv.row("two_corners,%u,%s,cpu,%u,%u,%u,%.4f,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%d", n, model_name(c.model),
+                ss.substeps, ss.iterations, c.substeps == 0 ? 1 : 0, median(ms), ss.max_strain, ss.rms_strain,
+                ref_strain, std::fabs(ss.max_strain - ref_strain) / ref_strain, e2 / gs.height, drift, drift_end, int(ok));
+        g_progress.tick(std::string("cloth ") + model_name(c.model) + " s" + std::to_string(ss.substeps) + " i" +
+                        std::to_string(ss.iterations));
+    }
+}
+
+/// R4 hanging chain: N particles of mass m below a pinned top, tip mass M (mass ratio M/(N m)),
+/// spring stiffness chosen so the top spring's exact strain is 1%. Starts at the exact
+/// equilibrium at rest; E2 = max over 2 s of max_j |x_j - exact_j| / (N L0).
+void run_precision_chain(const Options& o, Csv& csv) {
+    const uint32_t N = 20;
+    const double L0 = 0.05, m = 0.005;
+    const float dt = 1.0f / 60.0f;
+    const double seconds = o.quick ? 1.0 : 2.0;
+    const std::vector<double> ratios = o.quick ? std::vector<double>{1e3} : std::vector<double>{1, 1e2, 1e4, 1e5};
+    for (double ratio : ratios) {
+        const double M = ratio * N * m;
+        const double k = (N * m + M) * kG / (0.01 * L0);
+        std::vector<float> exact(size_t(N + 1) * 3, 0.0f);
+        for (uint32_t j = 0; j <= N; ++j)
+            exact[3 * j + 1] = -float(j * L0 + (m * kG / k) * (double(j) * N - 0.5 * j * (j - 1.0)) + M * kG * j / k);
+        const double ext_exact = -exact[3 * N + 1] - N * L0;
+        for (const Config& c : precision_configs(o, true)) {
+            GridSpec gs;
+            gs.cols = 1;
+            gs.rows = N + 1;
+            gs.width = 1.0;
+            gs.height = N * L0;
+            gs.mass = N * m + M;
+            gs.pins = Pins::TopVertex;
+            auto sim = make_grid(gs);
+            std::vector<float> w(N + 1, float(1.0 / m));
+            w[0] = 0;
+            w[N] = float(1.0 / (m + M));
+            sim->set_inverse_masses(w);
+            drape_params p = params_for(c.model);
+            if (c.model == DRAPE_MODEL_PBD) p.stiffness[0] = 1.0f;
+            else p.stiffness[0] = float(k);
+            p.stiffness[1] = p.stiffness[2] = 0;
+            p.substeps = c.substeps;
+            p.iterations = c.iterations;
+            sim->set_params(p);
+            sim->set_positions(exact);
+            std::vector<double> ms;
+            double e2 = 0;
+            bool ok = true;
+            drape_status st;
+            for (int step = 0; step < int(seconds * 60 + 0.5); ++step) {
+                ms.push_back(timed_step(*sim, dt, &st));
+                if (st != DRAPE_OK) ok = false;
+                const std::vector<float> x = sim->positions();
+                for (uint32_t j = 0; j <= N; ++j) {
+                    double dx = x[3 * j] - exact[3 * j], dy = x[3 * j + 1] - exact[3 * j + 1], dz = x[3 * j + 2] - exact[3 * j + 2];
+                    double e = std::sqrt(dx * dx + dy * dy + dz * dz);
+                    e2 = std::max(e2, std::isfinite(e) ? e : INFINITY);
+                }
+            }
+            const drape_stats ss = sim->stats();
+            const std::vector<float> x = sim->positions();
+            const double ext = -x[3 * N + 1] - N * L0;
+            csv.row("chain_1e%g,%u,%s,cpu,%u,%u,%u,%.4f,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%d", std::log10(ratio), N + 1,
+                    model_name(c.model), ss.substeps, ss.iterations, c.substeps == 0 ? 1 : 0, median(ms), ss.max_strain,
+                    ss.rms_strain, 0.01, std::fabs(ss.max_strain - 0.01) / 0.01, e2 / (N * L0),
+                    std::fabs(ext - ext_exact) / ext_exact, NAN, int(ok));
+            g_progress.tick(std::string("chain 1e") + fmt("%g ", std::log10(ratio)) + model_name(c.model) + " s" +
+                            std::to_string(ss.substeps) + " i" + std::to_string(ss.iterations));
+        }
+    }
+}
+
+void run_precision(const Options& o) {
+    {
+        std::ofstream f(o.out + "/reference.csv");
+        f << "scene,size,newton_residual_N,ref_max_strain\n";
+    }
+    // energy_drift for chains is the relative error of the tip extension (column reused, see header).
+    Csv csv(o.out + "/precision.csv",
+            "scene,size,model,backend,substeps,iterations,auto_substeps,ms_median,max_strain,rms_strain,ref_max_strain,"
+            "e1_rel_error,e2,energy_drift_or_ext_error,energy_drift_end,ok");
+    const int cloth = int(precision_configs(o, false).size());
+    const int chain = int(precision_configs(o, true).size()) * (o.quick ? 1 : 4);
+    g_progress.start("precision", cloth + chain);
+    run_precision_cloth(o, csv);
+    run_precision_chain(o, csv);
+    g_progress.finish();
+}
+
+// ---------------------------------------------------------------------------------------------
+// 3. Stress (accuracy.md S1 S2 S3 S5 S7 S10)
+
+struct StressCase {
+    std::string test, label;
+    uint32_t model;
+    double stiffness = 0, dt = 1.0 / 60.0;
+    uint32_t substeps_used = 0;
+};
+
+/// Runs `seconds` of frames (dt from dt_of(k)) with the monitor; returns survived.
+bool run_monitored(Sim& s, uint32_t model, double seconds, const std::function<float(int)>& dt_of, Monitor& mon,
+                   uint32_t* substeps = nullptr) {
+    mon.begin(s, model);
+    double t = 0;
+    for (int k = 0; t < seconds - 1e-9; ++k) {
+        const float dt = dt_of(k);
+        drape_status st = drape_cloth_step(s.cloth, dt);
+        t += dt;
+        if (substeps) *substeps = s.stats().substeps;
+        if (!mon.after_step(s, st, dt, t)) return false;
+    }
+    return true;
+}
+
+void run_stress(const Options& o) {
+    Csv csv(o.out + "/stress.csv",
+            "test,case,model,stiffness,dt,substeps,h,survived,time_to_failure_s,criterion,max_strain,energy_growth,seconds");
+    const uint32_t n = o.quick ? 8 : 16;
+    const double secs = o.quick ? 0.25 : 2.0;
+    std::vector<double> ks, dts;
+    if (o.quick) {
+        ks = {10, 1e3, 1e5, 1e7, 1e9};
+        dts = {1.0 / 240, 1.0 / 60, 1.0 / 10};
+    } else {
+        ks = {10, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+        dts = {1.0 / 240, 1.0 / 120, 1.0 / 60, 1.0 / 30, 1.0 / 10};
+    }
+    const std::vector<double> pbd_fractions = {0.001, 0.01, 0.1, 0.5, 1.0};
+    // S1 configurations: MASS_SPRING with one substep (the explicit limit), MASS_SPRING with
+    // automatic substeps (default), PBD, XPBD (defaults). Equal stiffness in all three groups
+    // and no damping, so the analytic Verlet limit applies.
+    struct S1Cfg {
+        const char* label;
+        uint32_t model, substeps;
+    };
+    const S1Cfg s1cfg[] = {{"mass_spring_1substep", DRAPE_MODEL_MASS_SPRING, 1},
+                           {"mass_spring", DRAPE_MODEL_MASS_SPRING, 0},
+                           {"pbd", DRAPE_MODEL_PBD, 0},
+                           {"xpbd", DRAPE_MODEL_XPBD, 0}};
+    const std::vector<uint32_t> res = o.quick ? std::vector<uint32_t>{8, 16} : std::vector<uint32_t>{16, 32, 64, 128, 256};
+    int total = 0;
+    for (const auto& c : s1cfg) total += int((c.model == DRAPE_MODEL_PBD ? pbd_fractions.size() : ks.size()) * dts.size());
+    total += 3 * 12 + 3 * 10 + 3 * 3 + 3 * 2 + 3 * int(res.size());
+    g_progress.start("stress", total);
+    auto record = [&](const std::string& test, const std::string& label, uint32_t model, double k, double dt,
+                      uint32_t substeps, bool ok, const Monitor& mon, double seconds) {
+        csv.row("%s,%s,%s,%.6g,%.6g,%u,%.6g,%d,%.4g,%s,%.4g,%.3g,%.3g", test.c_str(), label.c_str(), model_name(model), k,
+                dt, substeps, substeps ? dt / substeps : NAN, int(ok), ok ? NAN : mon.t_fail,
+                ok ? "" : mon.criterion.c_str(), mon.max_strain, mon.energy_check ? mon.energy_growth : NAN, seconds);
+        g_progress.tick(test + " " + label + " " + model_name(model) + (ok ? " ok" : " FAIL"));
+    };
+    auto base_grid = [&](bool vertical) {
+        GridSpec gs;
+        gs.cols = gs.rows = n;
+        gs.vertical = vertical;
+        return gs;
+    };
+
+    // S1 stiffness x dt map.
+    for (const auto& c : s1cfg) {
+        const auto& kk = c.model == DRAPE_MODEL_PBD ? pbd_fractions : ks;
+        for (double k : kk)
+            for (double dt : dts) {
+                auto sim = make_grid(base_grid(false));
+                drape_params p = params_for(c.model);
+                for (float& s : p.stiffness) s = float(k);
+                p.damping = 0;
+                p.substeps = c.substeps;
+                sim->set_params(p);
+                Monitor mon;
+                uint32_t sub = 0;
+                bool ok = run_monitored(*sim, c.model, secs, [&](int) { return float(dt); }, mon, &sub);
+                record("S1", c.label, c.model, k, dt, sub, ok, mon, secs);
+            }
+    }
+    // S2 frame dt sweep, fixed and jittered (dt x U[0.5, 1.5], fixed seed).
+    const double s2dts[] = {1.0 / 240, 1.0 / 120, 1.0 / 60, 1.0 / 30, 1.0 / 20, 1.0 / 10};
+    for (uint32_t m : kModels)
+        for (double dt : s2dts)
+            for (int jitter = 0; jitter < 2; ++jitter) {
+                auto sim = make_grid(base_grid(false));
+                sim->set_params(params_for(m));
+                std::mt19937 rng(1);
+                std::uniform_real_distribution<float> u(0.5f, 1.5f);
+                Monitor mon;
+                uint32_t sub = 0;
+                bool ok = run_monitored(*sim, m, secs, [&](int) { return float(dt) * (jitter ? u(rng) : 1.0f); }, mon, &sub);
+                record("S2", jitter ? "jitter" : "fixed", m, 0, dt, sub, ok, mon, secs);
+            }
+    // S3 mass ratio: heavy chain tip (stiffness scaled so the exact top strain is 1%, starts
+    // unstretched and drops), and a heavy free corner on the default cloth.
+    const double ratios[] = {10, 1e2, 1e3, 1e4, 1e5};
+    for (uint32_t m : kModels)
+        for (double ratio : ratios) {
+            const uint32_t N = 20;
+            const double L0 = 0.05, pm = 0.005, M = ratio * N * pm, k = (N * pm + M) * kG / (0.01 * L0);
+            GridSpec gs;
+            gs.cols = 1;
+            gs.rows = N + 1;
+            gs.height = N * L0;
+            gs.mass = N * pm + M;
+            gs.pins = Pins::TopVertex;
+            auto sim = make_grid(gs);
+            std::vector<float> w(N + 1, float(1 / pm));
+            w[0] = 0;
+            w[N] = float(1 / (pm + M));
+            sim->set_inverse_masses(w);
+            drape_params p = params_for(m);
+            p.stiffness[0] = m == DRAPE_MODEL_PBD ? 1.0f : float(k);
+            p.stiffness[1] = p.stiffness[2] = 0;
+            sim->set_params(p);
+            Monitor mon;
+            uint32_t sub = 0;
+            bool ok = run_monitored(*sim, m, secs, [](int) { return 1.0f / 60; }, mon, &sub);
+            record("S3", "chain_tip_1:" + fmt("%g", ratio), m, p.stiffness[0], 1.0 / 60, sub, ok, mon, secs);
+        }
+    for (uint32_t m : kModels)
+        for (double ratio : ratios) {
+            auto sim = make_grid(base_grid(true));
+            std::vector<float> w = sim->inv_mass;
+            w[n * n - 1] = float(1.0 / (ratio * sim->mass / (n * n)));
+            sim->set_inverse_masses(w);
+            sim->set_params(params_for(m));
+            Monitor mon;
+            uint32_t sub = 0;
+            bool ok = run_monitored(*sim, m, secs, [](int) { return 1.0f / 60; }, mon, &sub);
+            record("S3", "heavy_corner_1:" + fmt("%g", ratio), m, 0, 1.0 / 60, sub, ok, mon, secs);
+        }
+    // S5 stretched start (free cloth, no pins, scaled about its centre) and pull-and-release.
+    for (uint32_t m : kModels) {
+        for (double factor : {2.0, 10.0}) {
+            GridSpec gs = base_grid(false);
+            gs.pins = Pins::None;
+            auto sim = make_grid(gs);
+            sim->set_params(params_for(m));
+            std::vector<float> x = sim->positions();
+            for (size_t i = 0; i < x.size(); i += 3) {
+                x[i] = float(0.5 + (x[i] - 0.5) * factor);
+                x[i + 2] = float(-0.5 + (x[i + 2] + 0.5) * factor);
+            }
+            sim->set_positions(x);
+            Monitor mon;
+            uint32_t sub = 0;
+            bool ok = run_monitored(*sim, m, secs, [](int) { return 1.0f / 60; }, mon, &sub);
+            record("S5", "stretched_" + fmt("%gx", factor), m, 0, 1.0 / 60, sub, ok, mon, secs);
+        }
+        auto sim = make_grid(base_grid(true));
+        sim->set_params(params_for(m));
+        drape_status st;
+        for (int i = 0; i < 60; ++i) timed_step(*sim, 1.0f / 60, &st);  // settle
+        std::vector<float> x = sim->positions();
+        for (uint32_t r = n / 2 - 1; r <= n / 2 + 1; ++r)
+            for (uint32_t c = n / 2 - 1; c <= n / 2 + 1; ++c) x[3 * (r * n + c) + 2] += 1.0f;  // 1 m = cloth size
+        sim->set_positions(x);
+        Monitor mon;
+        uint32_t sub = 0;
+        bool ok = run_monitored(*sim, m, secs, [](int) { return 1.0f / 60; }, mon, &sub);
+        record("S5", "pull_3x3_1m", m, 0, 1.0 / 60, sub, ok, mon, secs);
+    }
+    // S7 starved budget: 1 substep, 1 iteration, stiff material (1e6 N/m; PBD fraction 1).
+    for (uint32_t m : kModels) {
+        auto sim = make_grid(base_grid(false));
+        drape_params p = params_for(m, m == DRAPE_MODEL_PBD ? 10.0 : 500.0);
+        p.substeps = 1;
+        p.iterations = 1;
+        sim->set_params(p);
+        Monitor mon;
+        uint32_t sub = 0;
+        bool ok = run_monitored(*sim, m, secs, [](int) { return 1.0f / 60; }, mon, &sub);
+        record("S7", "1substep_1iter_stiff", m, p.stiffness[0], 1.0 / 60, sub, ok, mon, secs);
+        // Same stiff material with the default budget, for comparison.
+        auto sim2 = make_grid(base_grid(false));
+        p.substeps = 0;
+        p.iterations = 4;
+        sim2->set_params(p);
+        Monitor mon2;
+        ok = run_monitored(*sim2, m, secs, [](int) { return 1.0f / 60; }, mon2, &sub);
+        record("S7", "default_budget_stiff", m, p.stiffness[0], 1.0 / 60, sub, ok, mon2, secs);
+    }
+    // S10 resolution sweep at the same size and material, default budget: strain after 1 s.
+    for (uint32_t m : kModels)
+        for (uint32_t r : res) {
+            if (m == DRAPE_MODEL_MASS_SPRING && r > 64) {  // ~1000 substeps per frame: minutes
+                g_progress.tick("S10 skip");
+                continue;
+            }
+            GridSpec gs = base_grid(true);
+            gs.cols = gs.rows = r;
+            auto sim = make_grid(gs);
+            sim->set_params(params_for(m));
+            Monitor mon;
+            uint32_t sub = 0;
+            const double s10 = o.quick ? 0.5 : 1.0;
+            bool ok = run_monitored(*sim, m, s10, [](int) { return 1.0f / 60; }, mon, &sub);
+            const drape_stats ss = sim->stats();
+            mon.max_strain = ss.max_strain;  // strain at the end, not the transient peak
+            record("S10", std::to_string(r) + "^2", m, 0, 1.0 / 60, sub, ok, mon, s10);
+        }
+    g_progress.finish();
+
+    // S10 second half: iterations (at 4 substeps) needed for max strain <= 1% after 1 s.
+    Csv it(o.out + "/s10_iterations.csv", "model,size,substeps,iterations_for_1pct,max_strain_at_that,reached");
+    const std::vector<uint32_t> res2 = o.quick ? std::vector<uint32_t>{8} : std::vector<uint32_t>{16, 32, 64};
+    g_progress.start("S10 iters", int(res2.size() * 2));
+    for (uint32_t m : {DRAPE_MODEL_PBD, DRAPE_MODEL_XPBD})
+        for (uint32_t r : res2) {
+            uint32_t found = 0;
+            float strain = NAN;
+            for (uint32_t iters = 1; iters <= (o.quick ? 16u : 128u); iters *= 2) {
+                GridSpec gs = base_grid(true);
+                gs.cols = gs.rows = r;
+                auto sim = make_grid(gs);
+                drape_params p = params_for(m);
+                p.substeps = 4;
+                p.iterations = iters;
+                sim->set_params(p);
+                drape_status st;
+                for (int i = 0; i < 60; ++i) timed_step(*sim, 1.0f / 60, &st);
+                strain = sim->stats().max_strain;
+                if (strain <= 0.01f) {
+                    found = iters;
+                    break;
+                }
+            }
+            it.row("%s,%u,4,%u,%.4g,%d", model_name(m), r, found, strain, int(found > 0));
+            g_progress.tick(std::string(model_name(m)) + " " + std::to_string(r) + "^2");
+        }
+    g_progress.finish();
+}
+
+// ---------------------------------------------------------------------------------------------
+// 4. The paper's Fig. 7: vibration at rest against stiffness
+
+void run_vibration(const Options& o) {
+    Csv csv(o.out + "/vibration.csv", "model,stiffness_scale,structural_stiffness,substeps,vibration_m,survived,criterion");
+    const uint32_t n = o.quick ? 8 : 20;
+    const double rest_s = o.quick ? 1.0 : 5.0, measure_s = o.quick ? 0.25 : 1.0;
+    const std::vector<double> phys = o.quick ? std::vector<double>{0.1, 1, 10, 100}
+                                             : std::vector<double>{0.05, 0.15, 0.5, 1.5, 5, 15, 50, 150, 500};
+    const std::vector<double> pbd = o.quick ? std::vector<double>{0.1, 0.5, 1} : std::vector<double>{0.02, 0.05, 0.1, 0.2, 0.5, 1};
+    g_progress.start("vibration", int(2 * phys.size() + pbd.size()));
+    for (uint32_t m : kModels)
+        for (double scale : m == DRAPE_MODEL_PBD ? pbd : phys) {
+            GridSpec gs;
+            gs.cols = gs.rows = n;
+            gs.vertical = false;  // the paper: falls from horizontal, hangs from two corners
+            auto sim = make_grid(gs);
+            drape_params p = params_for(m, scale);
+            p.air_drag = 2.0f;  // so the swing about the pin axis dies out within the rest time
+            sim->set_params(p);
+            Monitor mon;
+            bool ok = run_monitored(*sim, m, rest_s, [](int) { return 1.0f / 60; }, mon);
+            const uint32_t mid = (n / 2) * n + n / 2;
+            std::vector<float> prev = sim->positions();
+            double sum = 0;
+            int steps = 0;
+            for (; ok && steps < int(measure_s * 60); ++steps) {
+                if (drape_cloth_step(sim->cloth, 1.0f / 60) != DRAPE_OK) ok = false;
+                std::vector<float> x = sim->positions();
+                double dx = x[3 * mid] - prev[3 * mid], dy = x[3 * mid + 1] - prev[3 * mid + 1], dz = x[3 * mid + 2] - prev[3 * mid + 2];
+                sum += std::sqrt(dx * dx + dy * dy + dz * dz);
+                prev.swap(x);
+            }
+            csv.row("%s,%.4g,%.6g,%u,%.4g,%d,%s", model_name(m), scale, p.stiffness[0], sim->stats().substeps,
+                    ok ? sum / steps : NAN, int(ok), ok ? "" : (mon.criterion.empty() ? "step failed" : mon.criterion.c_str()));
+            g_progress.tick(std::string(model_name(m)) + fmt(" k=%g", p.stiffness[0]));
+        }
+    g_progress.finish();
+}
+
+void write_meta(const Options& o, double seconds) {
+    std::ofstream f(o.out + "/meta.csv");
+    f << "key,value\n";
+    f << "mode," << (o.quick ? "quick" : "full") << "\n";
+    f << "threads," << o.threads << "\n";
+    f << "hardware_threads," << sysconf(_SC_NPROCESSORS_ONLN) << "\n";
+    std::ifstream cpu("/proc/cpuinfo");
+    for (std::string line; std::getline(cpu, line);)
+        if (line.rfind("model name", 0) == 0) {
+            std::string v = line.substr(line.find(':') + 2);
+            std::replace(v.begin(), v.end(), ',', ' ');
+            f << "cpu," << v << "\n";
+            break;
+        }
+    std::ifstream load("/proc/loadavg");
+    std::string l1;
+    load >> l1;
+    f << "loadavg_1min_at_end," << l1 << "\n";
+    f << "abi_version," << drape_abi_version() << "\n";
+    std::string b;
+    for (uint32_t x : available_backends()) b += std::string(b.empty() ? "" : " ") + backend_name(x);
+    f << "backends," << b << "\n";
+    f << "seconds," << seconds << "\n";
+    f << "stress_grid," << (o.quick ? 8 : 16) << "\n";
+    f << "cloth_mass," << GridSpec{}.mass << "\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        if (a == "--quick") o.quick = true;
+        else if (a == "--out" && i + 1 < argc) o.out = argv[++i];
+        else if (a == "--threads" && i + 1 < argc) o.threads = uint32_t(std::atoi(argv[++i]));
+        else if (a == "--only" && i + 1 < argc) {
+            std::stringstream ss(argv[++i]);
+            for (std::string p; std::getline(ss, p, ',');) o.only.insert(p);
+        } else {
+            std::fprintf(stderr,
+                         "usage: drape_bench [--quick] [--out DIR] [--threads N] [--only "
+                         "throughput,threads,precision,stress,vibration]\n");
+            return a == "--help" || a == "-h" ? 0 : 2;
+        }
+    }
+    mkdir(o.out.c_str(), 0755);
+    const auto t0 = Clock::now();
+    if (o.wants("throughput")) run_throughput(o);
+    if (o.wants("threads")) run_threads(o);
+    if (o.wants("precision")) run_precision(o);
+    if (o.wants("stress")) run_stress(o);
+    if (o.wants("vibration")) run_vibration(o);
+    const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
+    write_meta(o, secs);
+    std::fprintf(stderr, "drape_bench: %s mode done in %.1f s; CSV in %s\n", o.quick ? "quick" : "full", secs, o.out.c_str());
+    return 0;
+}
