@@ -357,7 +357,7 @@ DRAPE_API drape_status drape_cloth_grab_release(drape_cloth* cloth, uint32_t tou
  * along by (1 - inertia) of the owner's motion without gaining velocity: inertia 0 simulates the
  * cloth fully in the owner's local space (owner motion has no inertial effect), 1 fully in world
  * space (the cloth lags and swings as the pins drag it). A jump of the owner's position by more
- * than teleport_distance moves the whole cloth rigidly with it (shape and velocities kept) instead
+ * than teleport_distance moves the whole cloth rigidly with it (shape kept, velocities zeroed) instead
  * of stretching it across the world. */
 typedef struct drape_owner {
     uint32_t struct_size;
