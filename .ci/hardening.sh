@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Hardening checks (issue 7), run by .ci/test.sh (so by `npm test` and .ci/run):
+#   asan   whole native suite (unit, physics, GLES on Mesa, soak, threading, fuzz corpus replay)
+#          under AddressSanitizer + UndefinedBehaviorSanitizer + LeakSanitizer, halt on first report
+#   fuzz   libFuzzer over the C ABI for DRAPE_FUZZ_SECONDS (60 under CI, 20 otherwise)
+#   tsan   threading tests (label tsan) under ThreadSanitizer
+#   arm64  native suite cross-compiled for aarch64, run under qemu-user (slow physics references
+#          and GLES excluded: see the arm64 test preset and docs in plugin-native/cmake/)
+# Usage: bash .ci/hardening.sh [asan|fuzz|tsan|arm64]...   (no argument: all four)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+run_asan() {
+  bash .ci/build.sh asan
+  ctest --preset asan
+}
+
+run_fuzz() {
+  local seconds=${DRAPE_FUZZ_SECONDS:-$([ -n "${CI:-}" ] && echo 60 || echo 20)}
+  local work=build/asan/fuzz
+  [ -x build/asan/tests/fuzz/drape_fuzz_api ] || bash .ci/build.sh asan
+  # New units go to a scratch corpus; the seeds in the repository stay as they are.
+  mkdir -p "$work/corpus" "$work/artifacts"
+  if ! ASAN_OPTIONS=halt_on_error=1:abort_on_error=1:detect_leaks=1 \
+       UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+       build/asan/tests/fuzz/drape_fuzz_api "$work/corpus" tests/fuzz/corpus tests/fuzz/regressions \
+         -max_total_time="$seconds" -timeout=60 -rss_limit_mb=4096 -print_final_stats=1 \
+         -artifact_prefix="$work/artifacts/" 2>"$work/log.txt"; then
+    grep -v '^#[0-9]' "$work/log.txt" | tail -60
+    echo "hardening: the fuzzer found a problem; reproducer(s) in $work/artifacts/." >&2
+    echo "  Replay: build/asan/tests/fuzz/drape_fuzz_api <file> (DRAPE_FUZZ_TRACE=1 prints the calls)." >&2
+    echo "  Keep it in tests/fuzz/regressions/ and add a test to tests/native/test_fuzz_regressions.cpp." >&2
+    return 1
+  fi
+  grep -E '^(Done|stat::)' "$work/log.txt" || true
+}
+
+run_tsan() {
+  cmake --preset tsan >/dev/null
+  cmake --build --preset tsan -j "$(nproc)" --target drape_hardening_tests
+  ctest --preset tsan
+}
+
+run_arm64() {
+  cmake --preset arm64 >/dev/null
+  cmake --build --preset arm64 -j "$(nproc)"
+  ctest --preset arm64
+}
+
+steps=("$@")
+((${#steps[@]})) || steps=(asan fuzz tsan arm64)
+for s in "${steps[@]}"; do
+  t0=$SECONDS
+  echo "== hardening: $s"
+  "run_$s"
+  echo "== hardening: $s passed in $((SECONDS - t0)) s"
+done
