@@ -58,6 +58,27 @@ TEST(Physics, R1FreeFallIsExactForEveryModelAndBackend) {
         }
 }
 
+// R1 far from the origin with tiny substeps: at y = 100 m with 200 substeps per frame, g h^2
+// (6e-9 m) is far below half an ulp of the position (4e-6 m). A state kept as (x, x_prev) would
+// not fall at all; the displacement state (kernels.h) must still give g t^2 / 2.
+TEST(Physics, R1FreeFallFarFromOriginWithManySubsteps) {
+    for (drape_model model : kModels) {
+        WorldPtr w = make_world();
+        drape_grid_desc g = grid_desc(4, 4, 1, 1);
+        g.origin[1] = 100.0f;
+        drape_cloth* c = make_grid(w.get(), g, 1);
+        drape_params p = base_params(model);
+        p.substeps = 200;
+        p.iterations = 1;
+        set(c, p);
+        for (int frame = 0; frame < 60; ++frame) ASSERT_DRAPE_OK(drape_cloth_step(c, 1 / 60.f));
+        const double expected_drop = 0.5 * kG * 1.0;
+        const std::vector<float> x = positions(c);
+        for (size_t v = 0; v < x.size() / 3; ++v)
+            EXPECT_NEAR(100.0 - x[3 * v + 1], expected_drop, 1e-3 * expected_drop) << "model " << model;
+    }
+}
+
 // R2: one spring (m = 1, L0 = 1, k = 1000, stretched to 1.5). Verlet keeps the amplitude and
 // oscillates at (2/h) asin(w h / 2); it is stable only for w h < 2.
 TEST(Physics, R2SpringFrequencyMatchesDiscreteVerlet) {

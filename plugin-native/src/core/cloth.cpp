@@ -19,13 +19,13 @@ Cloth::Cloth(World& world, drape_backend backend, Topology topology)
     pinned_.assign(n, 0);
     kinematic_target_.assign(topo_.rest_position.begin(), topo_.rest_position.end());
     for (auto& b : buffers_) b.resize(n);
-    for (uint32_t i = 0; i < n; ++i) buffers_[cur_][i] = buffers_[prev_][i] = Particle(topo_.rest_position[i], 0.0f);
+    for (uint32_t i = 0; i < n; ++i) buffers_[cur_][i] = Particle(topo_.rest_position[i], 0.0f);
     lambda_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
     active_count_.resize(n);
     kinematic_.reserve(n);
     kinematic_start_.resize(n);
     backup_cur_.resize(n);
-    backup_prev_.resize(n);
+    backup_disp_.resize(n);
     partials_.resize(world.pool().size());
     normals_.resize(n);
     stats_.struct_size = sizeof(drape_stats);
@@ -39,7 +39,7 @@ void Cloth::refresh_derived() {
     kinematic_.clear();
     for (uint32_t i = 0; i < n; ++i) {
         float w = pinned_[i] ? 0.0f : base_inverse_mass_[i];
-        buffers_[cur_][i].w = buffers_[prev_][i].w = w;
+        buffers_[cur_][i].w = buffers_[disp_][i].w = w;
         if (w == 0.0f) kinematic_.push_back(i);
     }
     // Active springs per particle, and the explicit stability bound (accuracy.md, "cruder"
@@ -115,7 +115,8 @@ void Cloth::set_positions(const float* xyz) {
     for (uint32_t v = 0; v < topo_.vertex_count; ++v) {
         const uint32_t i = topo_.vertex_to_particle[v];
         const glm::vec3 p(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-        buffers_[cur_][i] = buffers_[prev_][i] = Particle(p, buffers_[cur_][i].w);
+        buffers_[cur_][i] = Particle(p, buffers_[cur_][i].w);
+        buffers_[disp_][i] = Particle(glm::vec3(0.0f), buffers_[cur_][i].w);
         if (buffers_[cur_][i].w == 0.0f) kinematic_target_[i] = p;
     }
     fresh_ = true;
@@ -127,7 +128,7 @@ void Cloth::set_velocities(const float* xyz) {
         const uint32_t i = topo_.vertex_to_particle[v];
         if (buffers_[cur_][i].w == 0.0f) continue;  // kinematic particles follow their targets
         const glm::vec3 vel(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-        buffers_[prev_][i] = Particle(glm::vec3(buffers_[cur_][i]) - vel * h_prev_, buffers_[cur_][i].w);
+        buffers_[disp_][i] = Particle(vel * h_prev_, buffers_[cur_][i].w);
     }
     fresh_ = true;
 }
@@ -157,7 +158,7 @@ Result Cloth::step(float dt) {
     const drape_model model = drape_model(params_.model);
 
     std::memcpy(backup_cur_.data(), buffers_[cur_].data(), n * sizeof(Particle));
-    std::memcpy(backup_prev_.data(), buffers_[prev_].data(), n * sizeof(Particle));
+    std::memcpy(backup_disp_.data(), buffers_[disp_].data(), n * sizeof(Particle));
     const float backup_h_prev = h_prev_;
     const bool backup_fresh = fresh_;
     for (uint32_t k : kinematic_) kinematic_start_[k] = glm::vec3(buffers_[cur_][k]);
@@ -188,45 +189,50 @@ Result Cloth::step(float dt) {
         c.h_ratio = h / h_prev_;
         c.accel_h = fresh_ ? 0.5f * h : 0.5f * (h + h_prev_);
         Particle* cur = buffers_[cur_].data();
-        Particle* prev = buffers_[prev_].data();
+        Particle* disp = buffers_[disp_].data();
         Particle* spare = buffers_[spare_].data();
+        Particle* spare2 = buffers_[spare2_].data();
         // Kinematic particles move along a straight line from their start to their target.
         const float along = float(sub + 1) / float(substeps);
         auto kinematic_at = [&](uint32_t k) {
             return kinematic_start_[k] + (kinematic_target_[k] - kinematic_start_[k]) * along;
         };
         if (model == DRAPE_MODEL_MASS_SPRING) {
-            for_particles([&](uint32_t b, uint32_t e) { kernels::mass_spring_step(c, cur, prev, spare, b, e); });
-            for (uint32_t k : kinematic_) spare[k] = Particle(kinematic_at(k), 0.0f);
-            std::swap(prev_, cur_);   // prev <- cur
-            std::swap(cur_, spare_);  // cur <- new, spare <- old prev
+            for_particles([&](uint32_t b, uint32_t e) { kernels::mass_spring_step(c, cur, disp, spare, spare2, b, e); });
+            for (uint32_t k : kinematic_) {
+                spare[k] = Particle(kinematic_at(k), 0.0f);
+                spare2[k] = Particle(glm::vec3(spare[k]) - glm::vec3(cur[k]), 0.0f);
+            }
+            std::swap(cur_, spare_);
+            std::swap(disp_, spare2_);
         } else {
-            // predict: displacements into spare; iterate spare <-> prev (free after predict); the
-            // last iteration writes positions. cur stays the substep start and becomes prev.
+            // predict: displacements into spare; iterate spare <-> spare2; the last iteration
+            // also writes positions, into the displacement buffer (free after predict).
             if (model == DRAPE_MODEL_PBD && params_.damping > 0)
-                for_particles([&](uint32_t b, uint32_t e) { kernels::predict<true>(c, cur, prev, spare, b, e); });
+                for_particles([&](uint32_t b, uint32_t e) { kernels::predict<true>(c, cur, disp, spare, b, e); });
             else
-                for_particles([&](uint32_t b, uint32_t e) { kernels::predict<false>(c, cur, prev, spare, b, e); });
+                for_particles([&](uint32_t b, uint32_t e) { kernels::predict<false>(c, cur, disp, spare, b, e); });
             for (uint32_t k : kinematic_) spare[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
-            Particle* in = spare;
-            Particle* out = prev;
+            int in = spare_, out = spare2_;
             const bool xpbd = model == DRAPE_MODEL_XPBD;
             for (uint32_t it = 0; it < params_.iterations; ++it) {
                 const bool last = it + 1 == params_.iterations;
+                Particle* src = buffers_[in].data();
+                Particle* dst = buffers_[out].data();
                 for_particles([&](uint32_t b, uint32_t e) {
-                    if (xpbd && last) kernels::constraint_iteration<true, true>(c, in, cur, out, b, e);
-                    else if (xpbd) kernels::constraint_iteration<true, false>(c, in, cur, out, b, e);
-                    else if (last) kernels::constraint_iteration<false, true>(c, in, cur, out, b, e);
-                    else kernels::constraint_iteration<false, false>(c, in, cur, out, b, e);
+                    if (xpbd && last) kernels::constraint_iteration<true, true>(c, src, cur, dst, disp, b, e);
+                    else if (xpbd) kernels::constraint_iteration<true, false>(c, src, cur, dst, nullptr, b, e);
+                    else if (last) kernels::constraint_iteration<false, true>(c, src, cur, dst, disp, b, e);
+                    else kernels::constraint_iteration<false, false>(c, src, cur, dst, nullptr, b, e);
                 });
                 std::swap(in, out);
             }
-            // `in` holds the new positions; `cur` becomes prev; the third buffer is spare.
-            const int result = in == spare ? spare_ : prev_;
-            const int other = in == spare ? prev_ : spare_;
-            prev_ = cur_;
-            cur_ = result;
-            spare_ = other;
+            // Positions went to the old displacement buffer, displacements to `in`.
+            const int old_cur = cur_;
+            cur_ = disp_;
+            disp_ = in;
+            spare_ = old_cur;
+            spare2_ = out;
         }
         // issue 5: touch drag + colliders on the committed positions (core/interaction.cpp)
         if (!ix_.colliders.empty() || !ix_.drag_particles.empty()) interaction_substep(sub, substeps);
@@ -281,7 +287,7 @@ Result Cloth::step(float dt) {
     stats_.non_finite = total.finite ? 0 : 1;
     if (!total.finite || runaway) {
         std::memcpy(buffers_[cur_].data(), backup_cur_.data(), n * sizeof(Particle));
-        std::memcpy(buffers_[prev_].data(), backup_prev_.data(), n * sizeof(Particle));
+        std::memcpy(buffers_[disp_].data(), backup_disp_.data(), n * sizeof(Particle));
         h_prev_ = backup_h_prev;
         fresh_ = backup_fresh;
         for (uint32_t k : kinematic_) kinematic_target_[k] = glm::vec3(buffers_[cur_][k]);
@@ -330,14 +336,14 @@ void Cloth::stats(drape_stats* out) const {
     drape_stats s = stats_;
     // Energies from the current state (computed on demand: a step does not pay for them).
     const Particle* x = buffers_[cur_].data();
-    const Particle* p = buffers_[prev_].data();
+    const Particle* d = buffers_[disp_].data();
     const NeighbourTable& nb = topo_.nbr;
     const glm::vec3 g(params_.gravity[0], params_.gravity[1], params_.gravity[2]);
     double kinetic = 0, potential = 0, elastic = 0;
     for (uint32_t i = 0; i < topo_.particle_count; ++i) {
         const float w = x[i].w;
         if (w > 0) {
-            const glm::vec3 v = (glm::vec3(x[i]) - glm::vec3(p[i])) / h_prev_;
+            const glm::vec3 v = glm::vec3(d[i]) / h_prev_;
             kinetic += 0.5 * double(glm::dot(v, v)) / w;
             potential -= double(glm::dot(g, glm::vec3(x[i]))) / w;
         }
@@ -350,7 +356,6 @@ void Cloth::stats(drape_stats* out) const {
             elastic += 0.5 * params_.stiffness[nb.group[row + k]] * stretch * stretch;
         }
     }
-    if (fresh_) kinetic = 0;  // no step yet: prev holds the set velocity scaled by an unused h
     s.kinetic_energy = float(kinetic);
     s.potential_energy = float(potential);
     s.elastic_energy = float(elastic);

@@ -96,10 +96,11 @@ protected:
     const Topology topo_;
     drape_params params_;
 
-    // Run-time state: three particle buffers whose roles rotate (current, previous, spare).
-    std::vector<Particle> buffers_[3];
-    int cur_ = 0, prev_ = 1, spare_ = 2;
-    float h_prev_ = 1.0f;   ///< previous substep; velocity = (cur - prev)/h_prev
+    // Run-time state: positions (cur_) and displacements over the last substep (disp_, see
+    // kernels.h), plus two scratch buffers; the four buffers' roles rotate.
+    std::vector<Particle> buffers_[4];
+    int cur_ = 0, disp_ = 1, spare_ = 2, spare2_ = 3;
+    float h_prev_ = 1.0f;   ///< previous substep; velocity = disp / h_prev
     bool fresh_ = true;     ///< next substep is the first since positions/velocities were set
     std::vector<float> lambda_;
 
@@ -115,7 +116,7 @@ protected:
     float ms_h_max_ = 0;
 
     // Rollback copy and per-thread verify partials (allocated once).
-    std::vector<Particle> backup_cur_, backup_prev_;
+    std::vector<Particle> backup_cur_, backup_disp_;
     struct VerifyPartial {
         bool finite;
         float max_strain_all, max_strain, sum_sq;

@@ -140,7 +140,7 @@ bool Cloth::skip_step_asleep() {
 void Cloth::interaction_substep(uint32_t sub, uint32_t substeps) {
     const uint32_t n = topo_.particle_count;
     Particle* x = buffers_[cur_].data();
-    const Particle* start = buffers_[prev_].data();  // this substep's start
+    Particle* d = buffers_[disp_].data();  // this substep's displacement: start = x - d
 
     // Touch drag: 1/substeps of the step's displacement in the first substep gives the vertex
     // the finger's velocity (offset / dt); inertia carries it the rest of the way, so a free
@@ -149,7 +149,10 @@ void Cloth::interaction_substep(uint32_t sub, uint32_t substeps) {
     if (sub == 0 && !ix_.drag_particles.empty()) {
         const float part = 1.0f / float(substeps);
         for (uint32_t i : ix_.drag_particles)
-            if (x[i].w != 0.0f) x[i] += Particle(ix_.drag_offset[i] * part, 0.0f);
+            if (x[i].w != 0.0f) {
+                x[i] += Particle(ix_.drag_offset[i] * part, 0.0f);
+                d[i] += Particle(ix_.drag_offset[i] * part, 0.0f);
+            }
     }
 
     if (ix_.colliders.empty()) return;
@@ -158,7 +161,7 @@ void Cloth::interaction_substep(uint32_t sub, uint32_t substeps) {
     Aabb cloth;
     for (uint32_t i = 0; i < n; ++i) {
         cloth.add(glm::vec3(x[i]));
-        cloth.add(glm::vec3(start[i]));
+        cloth.add(glm::vec3(x[i]) - glm::vec3(d[i]));
     }
     const float t0 = float(sub) / float(substeps), t1 = float(sub + 1) / float(substeps);
     ix_.shapes.clear();
@@ -188,7 +191,7 @@ void Cloth::interaction_substep(uint32_t sub, uint32_t substeps) {
     ix_.collide_tests += uint64_t(n) * ix_.shapes.size();
     const kernels::CollideShape* shapes = ix_.shapes.data();
     const uint32_t count = uint32_t(ix_.shapes.size());
-    auto body = [&](uint32_t b, uint32_t e) { kernels::collide(shapes, count, start, x, b, e); };
+    auto body = [&](uint32_t b, uint32_t e) { kernels::collide(shapes, count, x, d, b, e); };
     if (backend_ == DRAPE_BACKEND_CPU_THREADED)
         world_.pool().parallel_for(n, body);
     else
@@ -209,13 +212,12 @@ void Cloth::interaction_end_step(float dt, bool rolled_back) {
     }
     // Fastest particle over the last substep.
     const uint32_t n = topo_.particle_count;
-    const Particle* x = buffers_[cur_].data();
-    const Particle* p = buffers_[prev_].data();
+    const Particle* disp = buffers_[disp_].data();
     const float limit = ix_.sleep_threshold * h_prev_;
     const float limit2 = limit * limit;
     bool still = true;
     for (uint32_t i = 0; i < n && still; ++i) {
-        const glm::vec3 d = glm::vec3(x[i]) - glm::vec3(p[i]);
+        const glm::vec3 d(disp[i]);
         still = glm::dot(d, d) <= limit2;
     }
     if (!still) {
@@ -225,8 +227,8 @@ void Cloth::interaction_end_step(float dt, bool rolled_back) {
     ix_.still_time += dt;
     if (ix_.still_time >= ix_.sleep_time) {
         // Fall asleep at rest: velocities zeroed so that waking starts from rest.
-        Particle* pw = buffers_[prev_].data();
-        for (uint32_t i = 0; i < n; ++i) pw[i] = x[i];
+        Particle* dw = buffers_[disp_].data();
+        for (uint32_t i = 0; i < n; ++i) dw[i] = Particle(glm::vec3(0.0f), dw[i].w);
         ix_.asleep = true;
         stats_.sleeping = 1;
     }
@@ -351,13 +353,13 @@ void Cloth::set_owner(const drape_owner& o) {
     ix_.owner_rot = rot;
     const uint32_t n = topo_.particle_count;
     Particle* cur = buffers_[cur_].data();
-    Particle* prev = buffers_[prev_].data();
+    Particle* disp = buffers_[disp_].data();
     auto full = [&](const glm::vec3& x) { return dq * (x - p_old) + pos; };
     if (glm::length(pos - p_old) > o.teleport_distance) {
         // Teleport: the whole cloth (and its pins) jumps rigidly with the owner, at rest.
         for (uint32_t i = 0; i < n; ++i) {
             cur[i] = Particle(full(glm::vec3(cur[i])), cur[i].w);
-            prev[i] = cur[i];
+            disp[i] = Particle(glm::vec3(0.0f), cur[i].w);
             kinematic_target_[i] = full(kinematic_target_[i]);
         }
         fresh_ = true;
@@ -365,7 +367,7 @@ void Cloth::set_owner(const drape_owner& o) {
         return;
     }
     // Carried part (1 - inertia) of the motion: applied to every particle's current and previous
-    // position, so it adds no velocity. Kinematic targets take the full motion; pins then cover the
+    // position (its displacement turns with it), so it adds no velocity. Kinematic targets take the full motion; pins then cover the
     // rest (inertia) over the next step's substeps, dragging the free cloth behind them.
     const glm::quat carry_rot = glm::slerp(glm::quat(1, 0, 0, 0), dq, 1.0f - o.angular_inertia);
     const glm::vec3 carry_move = (pos - p_old) * (1.0f - o.linear_inertia);
@@ -373,7 +375,7 @@ void Cloth::set_owner(const drape_owner& o) {
     if (o.linear_inertia < 1 || o.angular_inertia < 1) {
         for (uint32_t i = 0; i < n; ++i) {
             cur[i] = Particle(carried(glm::vec3(cur[i])), cur[i].w);
-            prev[i] = Particle(carried(glm::vec3(prev[i])), prev[i].w);
+            disp[i] = Particle(carry_rot * glm::vec3(disp[i]), disp[i].w);
         }
     }
     for (uint32_t k : kinematic_) kinematic_target_[k] = full(kinematic_target_[k]);

@@ -36,8 +36,7 @@ namespace Drape.Tests
 
         [TestCase(Model.Xpbd, Backend.Cpu)]
         [TestCase(Model.Pbd, Backend.Cpu)]
-        [TestCase(Model.MassSpring, Backend.Cpu, Ignore = "native bug (reported to the lead): mass-spring Verlet at y = 10 m " +
-                                                          "with automatic substeps (168) loses g*h^2 below float resolution; the cloth never falls")]
+        [TestCase(Model.MassSpring, Backend.Cpu)]
         [TestCase(Model.Xpbd, Backend.CpuThreaded)]
         public void UnpinnedClothFallsFreely(Model model, Backend backend)
         {

@@ -88,13 +88,16 @@ constexpr int kSweepIterations = 16;
 /// Friction (position-based Coulomb, Macklin et al. 2014 "Unified particle physics", eq. 24):
 /// with the contact push depth d and relative tangential displacement t over the substep, static
 /// friction (|t| <= mu d) removes t, kinetic friction shortens it by mu d.
-inline void collide(const CollideShape* shapes, uint32_t shape_count, const glm::vec4* start, glm::vec4* x,
+/// The substep start is x - d (d: displacement over the substep, kernels.h); a push moves x and
+/// d together, so the velocity after the substep includes it.
+inline void collide(const CollideShape* shapes, uint32_t shape_count, glm::vec4* x, glm::vec4* d,
                     uint32_t begin, uint32_t end) {
     for (uint32_t i = begin; i < end; ++i) {
         const float w = x[i].w;
         if (w == 0.0f) continue;  // kinematic: goes where its pin says
-        glm::vec3 xi(x[i]);
-        const glm::vec3 si(start[i]);
+        const glm::vec3 x_in(x[i]);
+        glm::vec3 xi = x_in;
+        const glm::vec3 si = x_in - glm::vec3(d[i]);
         for (uint32_t k = 0; k < shape_count; ++k) {
             const CollideShape& c = shapes[k];
             const glm::vec3 p1 = glm::conjugate(c.rot1) * (xi - c.pos1);
@@ -158,7 +161,9 @@ inline void collide(const CollideShape* shapes, uint32_t shape_count, const glm:
             }
             xi = c.rot1 * q + c.pos1;
         }
+        if (xi == x_in) continue;
         x[i] = glm::vec4(xi, w);
+        d[i] += glm::vec4(xi - x_in, 0.0f);
     }
 }
 

@@ -6,7 +6,11 @@
 // shaders/ mirrors these functions line by line, and any split of the range over threads gives
 // the same bits.
 //
-// Records are 16 bytes: xyz position (m) + w inverse mass (1/kg; 0 = pinned/kinematic).
+// Records are 16 bytes: xyz + w inverse mass (1/kg; 0 = pinned/kinematic). The state of a
+// particle is two records: its position x and its displacement d over the last substep (the
+// velocity times h_prev). Keeping d instead of the previous position matters in float: with many
+// small substeps g h^2 is below half an ulp of a position of a few metres, so x - prev would lose
+// gravity entirely (a stiff mass-spring cloth at y = 10 m would never fall); d keeps it exactly.
 #pragma once
 
 #include <cmath>
@@ -45,7 +49,7 @@ struct SubstepContext {
     float air_drag;
     float damping;                 ///< kd, N*s/m
     float h;                       ///< substep, s
-    float h_prev;                  ///< previous substep, s (velocity = (x - prev)/h_prev)
+    float h_prev;                  ///< previous substep, s (velocity = d / h_prev)
     float h_ratio;                 ///< h / h_prev: exactly 1 for equal substeps, so steady
                                    ///< motion is not rescaled by a rounded 1/h each substep
     float accel_h;                 ///< (h + h_prev_for_accel)/2: h, or h/2 on the first step
@@ -68,75 +72,75 @@ inline glm::vec3 external_accel(const SubstepContext& c, const glm::vec3& v) {
 }
 
 /// MASS_SPRING (paper eq. 1-3): Hooke force plus a dashpot along each spring, then a Verlet step
-/// x' = x + v h + a h (h + h_prev)/2 with v = (x - prev)/h_prev (variable-step Verlet; exact for
-/// constant acceleration when the first step uses h/2, see accuracy.md R1).
-inline void mass_spring_step(const SubstepContext& c, const Particle* cur, const Particle* prev, Particle* out,
-                             uint32_t begin, uint32_t end) {
+/// d' = d h/h_prev + a h (h + h_prev)/2, x' = x + d' (variable-step Verlet in displacement form;
+/// exact for constant acceleration when the first step uses h/2, see accuracy.md R1).
+inline void mass_spring_step(const SubstepContext& c, const Particle* x, const Particle* d, Particle* x_out,
+                             Particle* d_out, uint32_t begin, uint32_t end) {
     const float inv_hp = 1.0f / c.h_prev;
     for (uint32_t i = begin; i < end; ++i) {
-        const glm::vec3 xi(cur[i]);
-        const float wi = cur[i].w;
+        const glm::vec3 xi(x[i]);
+        const float wi = x[i].w;
         if (wi == 0.0f) {
-            out[i] = cur[i];
+            x_out[i] = x[i];
+            d_out[i] = Particle(0.0f);
             continue;
         }
-        const glm::vec3 vi = (xi - glm::vec3(prev[i])) * inv_hp;
+        const glm::vec3 vi = glm::vec3(d[i]) * inv_hp;
         glm::vec3 force(0.0f);
         const size_t row = size_t(i) * c.slots;
         for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
             const size_t slot = row + s;
             if (!active_slot(c, slot)) continue;
             const uint32_t j = c.nbr_index[slot];
-            const glm::vec3 xj(cur[j]);
-            const glm::vec3 vj = (xj - glm::vec3(prev[j])) * inv_hp;
+            const glm::vec3 vj = glm::vec3(d[j]) * inv_hp;
             float len;
-            const glm::vec3 n = direction(xi - xj, &len);
+            const glm::vec3 n = direction(xi - glm::vec3(x[j]), &len);
             const float k = c.groups.stiffness[c.nbr_group[slot]];
             force += (-k * (len - c.nbr_rest[slot]) - c.damping * glm::dot(vi - vj, n)) * n;
         }
         const glm::vec3 a = wi * force + external_accel(c, vi);
-        out[i] = Particle(xi + (xi - glm::vec3(prev[i])) * c.h_ratio + a * (c.h * c.accel_h), wi);
+        const glm::vec3 dn = glm::vec3(d[i]) * c.h_ratio + a * (c.h * c.accel_h);
+        x_out[i] = Particle(xi + dn, wi);
+        d_out[i] = Particle(dn, wi);
     }
 }
 
 /// PBD / XPBD prediction: the inertial displacement of this substep under external forces,
-/// d = v h + a h (h + h_prev)/2, written as a displacement record (xyz = d, w = inverse mass);
-/// multipliers reset. Position-based substeps work on displacements from the substep start, not
-/// on absolute positions: with many small substeps g h^2 is a few float ulps of a position of
-/// order 1 m, and rounding x + g h^2 would bias the equilibrium by about 1% (measured on R4).
+/// d' = d h/h_prev + a h (h + h_prev)/2, written as a displacement record; multipliers reset.
+/// Position-based substeps then work on displacements from the substep start, not on absolute
+/// positions, for the same float reason as the state (see the top of this file).
 /// kDashpot (PBD, which has no compliance to carry damping): explicit dashpots along the springs,
 /// kd limited per spring to 1/(h (wi ci + wj cj)) so the explicit update cannot overshoot.
 template <bool kDashpot>
-inline void predict(const SubstepContext& c, const Particle* cur, const Particle* prev, Particle* out,
+inline void predict(const SubstepContext& c, const Particle* x, const Particle* d, Particle* out,
                     uint32_t begin, uint32_t end) {
     const float inv_hp = 1.0f / c.h_prev;
     for (uint32_t i = begin; i < end; ++i) {
-        const float wi = cur[i].w;
-        const glm::vec3 xi(cur[i]);
-        glm::vec3 d(0.0f);
+        const float wi = x[i].w;
+        glm::vec3 dn(0.0f);
         if (wi != 0.0f) {
-            const glm::vec3 vi = (xi - glm::vec3(prev[i])) * inv_hp;
+            const glm::vec3 vi = glm::vec3(d[i]) * inv_hp;
             glm::vec3 a = external_accel(c, vi);
             if (kDashpot) {
+                const glm::vec3 xi(x[i]);
                 glm::vec3 force(0.0f);
                 const size_t row = size_t(i) * c.slots;
                 for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
                     const size_t slot = row + s;
                     if (!active_slot(c, slot)) continue;
                     const uint32_t j = c.nbr_index[slot];
-                    const glm::vec3 xj(cur[j]);
-                    const glm::vec3 vj = (xj - glm::vec3(prev[j])) * inv_hp;
+                    const glm::vec3 vj = glm::vec3(d[j]) * inv_hp;
                     float len;
-                    const glm::vec3 n = direction(xi - xj, &len);
+                    const glm::vec3 n = direction(xi - glm::vec3(x[j]), &len);
                     const float limit = 1.0f / (c.h * (wi * float(c.active_count[i]) +
-                                                       cur[j].w * float(c.active_count[j])));
+                                                       x[j].w * float(c.active_count[j])));
                     force -= std::fmin(c.damping, limit) * glm::dot(vi - vj, n) * n;
                 }
                 a += wi * force;
             }
-            d = (xi - glm::vec3(prev[i])) * c.h_ratio + a * (c.h * c.accel_h);
+            dn = glm::vec3(d[i]) * c.h_ratio + a * (c.h * c.accel_h);
         }
-        out[i] = Particle(d, wi);
+        out[i] = Particle(dn, wi);
         if (c.lambda)
             for (uint32_t s = 0; s < c.slots; ++s) c.lambda[size_t(i) * c.slots + s] = 0.0f;
     }
@@ -153,11 +157,12 @@ inline float jacobi_scale(float wi, float wj, uint32_t ci, uint32_t cj, float di
 
 /// One PBD (paper eq. 7-8, stiffness k per iteration) or XPBD (Macklin 2016 eq. 18 with the
 /// damping term of eq. 26) Jacobi iteration on displacements `disp` from the substep start
-/// `start`; writes displacements to `out`, or, with kCommit (the last iteration), the new
-/// positions start + displacement. Symmetric in i and j, so both copies of each lambda stay equal.
+/// `start`; writes displacements to `out` and, with kCommit (the last iteration), also the new
+/// positions start + displacement to `x_out`. Symmetric in i and j, so both copies of each lambda
+/// stay equal.
 template <bool kXpbd, bool kCommit>
 inline void constraint_iteration(const SubstepContext& c, const Particle* disp, const Particle* start, Particle* out,
-                                 uint32_t begin, uint32_t end) {
+                                 Particle* x_out, uint32_t begin, uint32_t end) {
     for (uint32_t i = begin; i < end; ++i) {
         const float wi = disp[i].w;
         const glm::vec3 di(disp[i]);
@@ -192,7 +197,9 @@ inline void constraint_iteration(const SubstepContext& c, const Particle* disp, 
                 dx += (wi * dl) * n;
             }
         }
-        out[i] = kCommit ? Particle(si + (di + dx), wi) : Particle(di + dx, wi);
+        const glm::vec3 dn = di + dx;
+        out[i] = Particle(dn, wi);
+        if (kCommit) x_out[i] = Particle(si + dn, wi);
     }
 }
 

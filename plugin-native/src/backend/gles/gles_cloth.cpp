@@ -414,7 +414,7 @@ Result GlesCloth::sync_gpu() {
 void GlesCloth::push_state() {
     const uint32_t n = topo_.particle_count;
     std::vector<Particle> records(size_t(n) * record_, Particle(0.0f));
-    const int sources[2] = {cur_, prev_};
+    const int sources[2] = {cur_, disp_};
     for (int k = 0; k < 2; ++k) {
         for (uint32_t i = 0; i < n; ++i) records[size_t(i) * record_] = buffers_[sources[k]][i];
         glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[g_[k]]);
@@ -441,7 +441,7 @@ Result GlesCloth::pull() {
     if (!context_current(&why))
         return {DRAPE_ERROR_BACKEND_UNAVAILABLE, "reading a GLES cloth back needs its GL context: " + why};
     const uint32_t n = topo_.particle_count;
-    const int targets[2] = {cur_, prev_};
+    const int targets[2] = {cur_, disp_};
     GLint bound = 0;
     glGetIntegerv(GL_COPY_READ_BUFFER_BINDING, &bound);
     for (int k = 0; k < 2; ++k) {
