@@ -7,6 +7,7 @@ packages=(
   libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
   glslang-tools libstb-dev python3-matplotlib
   imagemagick  # issue 3: demo GIFs
+  clang-14 libclang-rt-14-dev g++-aarch64-linux-gnu qemu-user  # issue 7: sanitizers, libFuzzer, arm64 under qemu
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -8,3 +8,6 @@ ctest --preset release
 bash .ci/dotnet-test.sh
 # Benchmark smoke run (quick mode, < 1 min): keeps drape_bench and its plots working; no timing checks.
 bash tests/bench/run.sh --quick --out build/release/bench-quick
+# Hardening (issue 7): native suite under ASan+UBSan+LSan, libFuzzer on the C ABI (60 s under CI),
+# threading tests under TSan, native suite on arm64 under qemu-user. Parts: .ci/hardening.sh asan|fuzz|tsan|arm64
+bash .ci/hardening.sh

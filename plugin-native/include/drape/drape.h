@@ -8,8 +8,16 @@
  *  - every input struct starts with `struct_size` (set it to sizeof the struct);
  *  - structs shared with C# name their twin; a test checks size and field offsets.
  *
- * Threading: a world and the cloths in it may be used from one thread at a time (any thread).
- * Different worlds are independent. The CPU_THREADED backend runs its own workers inside a call.
+ * Threading: a world and the cloths in it may be used from one thread at a time (any thread;
+ * hand over with the usual synchronisation, e.g. a join or a mutex). Different worlds may be used
+ * from different threads at the same time. Functions taking no world or cloth (drape_abi_version,
+ * drape_last_error, *_default) may be called from any thread at any time; a stale or foreign
+ * handle is refused from any thread. drape_last_error() is per thread. The CPU_THREADED backend
+ * runs its own workers only inside drape_world_step / drape_cloth_step (and spreads a world's
+ * CPU cloths over them); they are idle when the call returns. GL: a GLES cloth is used only on
+ * the thread whose EGL context created it, with that context current (immediate use), or its GL
+ * work runs on Unity's render thread (see the GLES section); CPU cloths never touch GL.
+ * Checked under ThreadSanitizer: tests/native/test_threading.cpp (.ci/hardening.sh tsan).
  *
  * Units: metres, kilograms, seconds. Positions are in simulation (world) space.
  */
@@ -127,8 +135,12 @@ typedef struct drape_params {
     float gravity[3];         /**< m/s^2. Default (0,-9.81,0) */
     float wind[3];            /**< m/s, air velocity. Default 0 */
     float air_drag;           /**< 1/s, a += air_drag*(wind - v). Default 0.1 */
-    uint32_t substeps;        /**< per step; 0 = automatic (MASS_SPRING: from the stability bound) */
-    uint32_t iterations;      /**< solver iterations per substep (PBD, XPBD), >= 1. Default 4 */
+    uint32_t substeps;        /**< per step; 0 = automatic (MASS_SPRING: from the stability bound;
+                                   PBD, XPBD: 16 "small steps") */
+    uint32_t iterations;      /**< solver iterations per substep (PBD, XPBD), >= 1. Default 1 */
+    float max_stretch;        /**< tethers (long-range attachments, Kim et al. 2012): every particle
+                                   stays within (1 + max_stretch) x its rest distance along the cloth
+                                   to the nearest pinned particle. Fraction >= 0; 0 = off. Default 0.1 */
 } drape_params;
 
 /* C# twin: Drape.Core.VertexLayout. Output goes to dst + i*stride + offset for caller vertex i. */
