@@ -417,13 +417,27 @@ def main():
              "medians of repeated steps on a machine shared with other engineers' builds, so they move between runs "
              "(compare ratios within a run). Plots: fig6_step_time.png, threads.png, precision_*.png, "
              "stability_map.png, fig7_vibration.png.\n"]
-    fig6(out, read(out, "throughput.csv"), meta, lines)
-    threads(out, read(out, "threads.csv"), meta, lines)
-    precision(out, read(out, "precision.csv"), read(out, "reference.csv"), meta, lines)
-    stress(out, read(out, "stress.csv"), read(out, "s10_iterations.csv"), read(out, "s8_colliders.csv"), meta, lines)
-    vibration(out, read(out, "vibration.csv"), meta, lines)
+    sections = [
+        lambda: fig6(out, read(out, "throughput.csv"), meta, lines),
+        lambda: threads(out, read(out, "threads.csv"), meta, lines),
+        lambda: precision(out, read(out, "precision.csv"), read(out, "reference.csv"), meta, lines),
+        lambda: stress(out, read(out, "stress.csv"), read(out, "s10_iterations.csv"), read(out, "s8_colliders.csv"),
+                       meta, lines),
+        lambda: vibration(out, read(out, "vibration.csv"), meta, lines),
+    ]
+    failed = 0
+    for section in sections:
+        try:
+            section()
+        except Exception as e:  # one bad plot (e.g. a partial run) must not lose the rest of the report
+            failed += 1
+            plt.close("all")
+            lines.append(f"(a section failed to plot: {type(e).__name__}: {e})\n")
+            print(f"plot.py: warning: {type(e).__name__}: {e}", file=sys.stderr)
     with open(os.path.join(out, "REPORT.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
+    if failed:
+        print(f"plot.py: {failed} section(s) failed", file=sys.stderr)
     print(f"plot.py: wrote {out}/REPORT.md and {len([p for p in os.listdir(out) if p.endswith('.png')])} PNGs")
 
 
