@@ -18,6 +18,7 @@ drape_params base_params(drape_model model) {
     drape_params_default(&p);
     p.model = model;
     p.air_drag = 0;
+    p.max_stretch = 0;  // exact answers below are for the springs alone
     if (model == DRAPE_MODEL_PBD) p.stiffness[0] = p.stiffness[1] = p.stiffness[2] = 1.0f;
     return p;
 }

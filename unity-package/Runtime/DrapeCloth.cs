@@ -123,11 +123,15 @@ namespace Drape
         [Tooltip("How fast the cloth takes on the wind's velocity, 1/s.")]
         [Range(0f, 10f)] public float AirDrag = 0.1f;
 
-        [Tooltip("Substeps per step. 0 = automatic (mass-spring: from the stability bound).")]
+        [Tooltip("Substeps per step. 0 = automatic (mass-spring: from the stability bound; PBD/XPBD: 16).")]
         [Range(0, 64)] public int Substeps = 0;
 
-        [Tooltip("Solver iterations per substep (PBD, XPBD).")]
-        [Range(1, 32)] public int Iterations = 4;
+        [Tooltip("Solver iterations per substep (PBD, XPBD). More substeps beat more iterations at equal cost.")]
+        [Range(1, 32)] public int Iterations = 1;
+
+        [Tooltip("Tethers: no vertex gets further than (1 + this) times its rest distance along the cloth from " +
+                 "the nearest pin. Stops fine cloth from stretching like rubber. 0 = off.")]
+        [Range(0f, 1f)] public float MaxStretch = 0.1f;
 
         [Header("Pins")]
         [Tooltip("Which vertices are held in place (in the GameObject's local space).")]
@@ -458,6 +462,7 @@ namespace Drape
             p.AirDrag = AirDrag;
             p.Substeps = (uint)Mathf.Max(0, Substeps);
             p.Iterations = (uint)Mathf.Max(1, Iterations);
+            p.MaxStretch = Mathf.Max(0f, MaxStretch);
             _cloth.SetParams(p);
         }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <queue>
 #include <cmath>
 #include <cstring>
 
@@ -27,6 +28,9 @@ Cloth::Cloth(World& world, drape_backend backend, Topology topology)
     backup_cur_.resize(n);
     backup_disp_.resize(n);
     partials_.resize(world.pool().size());
+    tether_anchor_.assign(n, 0);
+    tether_rest_.assign(n, -1.0f);
+    tether_length_.assign(n, -1.0f);
     normals_.resize(n);
     stats_.struct_size = sizeof(drape_stats);
     refresh_derived();
@@ -66,6 +70,44 @@ void Cloth::refresh_derived() {
         h_max = std::min(h_max, h);
     }
     ms_h_max_ = h_max;
+    if (kinematic_ != tethered_kinematic_) rebuild_tethers();
+    for (uint32_t i = 0; i < n; ++i)
+        tether_length_[i] = tether_rest_[i] < 0 ? -1.0f : tether_rest_[i] * (1.0f + params_.max_stretch);
+}
+
+void Cloth::rebuild_tethers() {
+    // Multi-source Dijkstra from every kinematic particle over the structural and shear springs
+    // (rest lengths as edge weights): the geodesic rest distance along the cloth, which is what a
+    // hanging cloth can at most stretch out to.
+    const uint32_t n = topo_.particle_count;
+    const NeighbourTable& nb = topo_.nbr;
+    std::fill(tether_rest_.begin(), tether_rest_.end(), -1.0f);
+    using Item = std::pair<float, uint32_t>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    std::vector<float> dist(n, INFINITY);
+    for (uint32_t k : kinematic_) {
+        dist[k] = 0;
+        tether_anchor_[k] = k;
+        queue.push({0.0f, k});
+    }
+    while (!queue.empty()) {
+        const auto [di, i] = queue.top();
+        queue.pop();
+        if (di > dist[i]) continue;
+        tether_rest_[i] = di;
+        const size_t row = size_t(i) * nb.slots;
+        for (uint32_t s = 0; s < nb.count[i]; ++s) {
+            if (nb.group[row + s] == DRAPE_GROUP_BEND) continue;
+            const uint32_t j = nb.index[row + s];
+            const float dj = di + nb.rest[row + s];
+            if (dj < dist[j]) {
+                dist[j] = dj;
+                tether_anchor_[j] = tether_anchor_[i];
+                queue.push({dj, j});
+            }
+        }
+    }
+    tethered_kinematic_ = kinematic_;
 }
 
 void Cloth::set_params(const drape_params& p) {
@@ -233,6 +275,13 @@ Result Cloth::step(float dt) {
             disp_ = in;
             spare_ = old_cur;
             spare2_ = out;
+        }
+        if (params_.max_stretch > 0 && !kinematic_.empty()) {
+            Particle* x = buffers_[cur_].data();
+            Particle* d = buffers_[disp_].data();
+            for_particles([&](uint32_t b, uint32_t e) {
+                kernels::tether(tether_anchor_.data(), tether_length_.data(), x, d, b, e);
+            });
         }
         // issue 5: touch drag + colliders on the committed positions (core/interaction.cpp)
         if (!ix_.colliders.empty() || !ix_.drag_particles.empty()) interaction_substep(sub, substeps);

@@ -111,6 +111,13 @@ protected:
     std::vector<uint32_t> kinematic_;        ///< particles with w = 0
     std::vector<glm::vec3> kinematic_start_; ///< their positions at the start of the step
 
+    // Tethers: nearest kinematic particle along the cloth and that rest distance (-1: none);
+    // rebuilt only when the set of kinematic particles changes (moving pins keeps them).
+    void rebuild_tethers();
+    std::vector<uint32_t> tether_anchor_;
+    std::vector<float> tether_rest_, tether_length_;
+    std::vector<uint32_t> tethered_kinematic_;  ///< kinematic_ when the tethers were built
+
     // Derived from params + masses.
     std::vector<uint32_t> active_count_;
     float ms_h_max_ = 0;

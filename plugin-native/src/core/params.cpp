@@ -21,7 +21,8 @@ drape_params default_params() {
     p.gravity[1] = -9.81f;
     p.air_drag = 0.1f;
     p.substeps = 0;
-    p.iterations = 4;
+    p.iterations = 1;
+    p.max_stretch = 0.1f;
     return p;
 }
 
@@ -31,8 +32,9 @@ std::string validate_params(const drape_params& p, drape_status* status) {
     *status = DRAPE_ERROR_NOT_FINITE;
     for (float k : p.stiffness)
         if (!std::isfinite(k)) return "stiffness is NaN or infinite";
-    if (!std::isfinite(p.damping) || !std::isfinite(p.air_drag) || !finite3(p.gravity) || !finite3(p.wind))
-        return "damping, air_drag, gravity and wind must be finite";
+    if (!std::isfinite(p.damping) || !std::isfinite(p.air_drag) || !finite3(p.gravity) || !finite3(p.wind) ||
+        !std::isfinite(p.max_stretch))
+        return "damping, air_drag, gravity, wind and max_stretch must be finite";
     *status = DRAPE_ERROR_INVALID_ARGUMENT;
     for (float k : p.stiffness) {
         if (k < 0) return "stiffness must be >= 0";
@@ -43,6 +45,7 @@ std::string validate_params(const drape_params& p, drape_status* status) {
     if (p.air_drag < 0 || p.air_drag > 1e3f) return "air_drag must be in [0, 1000] 1/s";
     if (norm3(p.gravity) > 1e4f) return "gravity above 1e4 m/s^2";
     if (norm3(p.wind) > 1e4f) return "wind above 1e4 m/s";
+    if (p.max_stretch < 0 || p.max_stretch > 100) return "max_stretch must be in [0, 100] (0 = no tethers)";
     if (p.substeps > kMaxSubsteps) return "substeps above " + std::to_string(kMaxSubsteps);
     if (p.iterations < 1 || p.iterations > kMaxIterations)
         return "iterations must be in [1, " + std::to_string(kMaxIterations) + "]";

@@ -56,6 +56,7 @@ static const probe_entry k_entries[] = {
     FIELD(drape_params, air_drag),
     FIELD(drape_params, substeps),
     FIELD(drape_params, iterations),
+    FIELD(drape_params, max_stretch),
 
     STRUCT(drape_vertex_layout),
     FIELD(drape_vertex_layout, struct_size),

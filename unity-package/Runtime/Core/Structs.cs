@@ -134,10 +134,13 @@ namespace Drape.Core
         public Float3 Wind;
         /// <summary>1/s, a += AirDrag*(Wind - v). Default 0.1.</summary>
         public float AirDrag;
-        /// <summary>Per step; 0 = automatic (MassSpring: from the stability bound).</summary>
+        /// <summary>Per step; 0 = automatic (MassSpring: from the stability bound; Pbd, Xpbd: 16).</summary>
         public uint Substeps;
-        /// <summary>Solver iterations per substep (Pbd, Xpbd), &gt;= 1. Default 4.</summary>
+        /// <summary>Solver iterations per substep (Pbd, Xpbd), &gt;= 1. Default 1.</summary>
         public uint Iterations;
+        /// <summary>Tethers: every particle stays within (1 + MaxStretch) x its rest distance along the
+        /// cloth to the nearest pinned particle. &gt;= 0; 0 = off. Default 0.1.</summary>
+        public float MaxStretch;
     }
 
     /// <summary>C twin: drape_vertex_layout. Output goes to dst + i*Stride + offset for vertex i.</summary>

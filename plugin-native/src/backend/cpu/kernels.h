@@ -203,4 +203,24 @@ inline void constraint_iteration(const SubstepContext& c, const Particle* disp, 
     }
 }
 
+/// Tethers (long-range attachments, Kim, Chentanez and Mueller 2012): particle i may be at most
+/// `length[i]` from the kinematic particle `anchor[i]`; beyond that it is pulled back onto the
+/// sphere, and its displacement takes the same correction (no velocity away from the anchor).
+/// One-sided and local, so it runs after the solve in O(n) and stops the stretch a local solver
+/// cannot remove in few passes on a fine cloth. Particles without an anchor have length < 0.
+inline void tether(const uint32_t* anchor, const float* length, Particle* x, Particle* d, uint32_t begin,
+                   uint32_t end) {
+    for (uint32_t i = begin; i < end; ++i) {
+        const float limit = length[i];
+        if (limit < 0.0f || x[i].w == 0.0f) continue;
+        const glm::vec3 xi(x[i]);
+        float len;
+        const glm::vec3 n = direction(xi - glm::vec3(x[anchor[i]]), &len);
+        if (len <= limit) continue;
+        const glm::vec3 pull = n * (limit - len);
+        x[i] = Particle(xi + pull, x[i].w);
+        d[i] += Particle(pull, 0.0f);
+    }
+}
+
 }  // namespace drape::kernels
