@@ -10,11 +10,7 @@
 //   DRAPE_WRITE_NORMAL     capture v_normal (no normal code otherwise)
 //   DRAPE_KEEP_DECLS       generated `in uvecN a_keepK; flat out uvecN v_keepK;` for the bytes of
 //   DRAPE_KEEP_COPY        the record this pass does not own (copied bit for bit from a scratch copy)
-//   DRAPE_RECORD           vec4s per particle record in u_x (see sim.vert.glsl)
 //   DRAPE_TRI_SLOTS        incident-triangle table row length
-#ifndef DRAPE_RECORD
-#define DRAPE_RECORD 1
-#endif
 #ifndef DRAPE_TRI_SLOTS
 #define DRAPE_TRI_SLOTS 6
 #endif
@@ -26,7 +22,7 @@
 precision highp float;
 precision highp int;
 
-uniform highp sampler2D u_x;      // particle records after the last substep
+uniform highp sampler2D u_x;      // position records (one vec4 each) after the last substep
 uniform highp usampler2D u_tris;  // texel i*DRAPE_TRI_SLOTS+t = incident triangle (p0, p1, p2, 0)
 uniform highp usampler2D u_info;  // per particle (neighbours, active springs, triangles, 0)
 uniform int u_tex_width;
@@ -43,7 +39,7 @@ DRAPE_KEEP_DECLS
 #endif
 
 ivec2 texel(int t) { return ivec2(t % u_tex_width, t / u_tex_width); }
-vec3 position(int p) { return texelFetch(u_x, texel(p * DRAPE_RECORD), 0).xyz; }
+vec3 position(int p) { return texelFetch(u_x, texel(p), 0).xyz; }
 
 void main() {
     int i = int(a_particle);

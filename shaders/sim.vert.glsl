@@ -2,24 +2,35 @@
 // Drape GLES 3.0 simulation passes (transform feedback, one vertex = one particle).
 // Mirrors plugin-native/src/backend/cpu/kernels.h line by line; keep the two in sync.
 //
+// State (as on the CPU, see the top of kernels.h): position x and displacement d over the last
+// substep (velocity * h_prev), two buffers of one vec4 record per particle (xyz + w inverse mass).
+//
 // Variants by #define (inserted after #version by the backend; glslangValidator checks each):
-//   DRAPE_PASS_MASS_SPRING   kernels::mass_spring_step (paper eq. 1-3)
-//   DRAPE_PASS_PREDICT       kernels::predict<DRAPE_DASHPOT> (PBD / XPBD prediction; writes
-//                            displacement records, xyz = displacement from the substep start)
-//   DRAPE_PASS_CONSTRAINT    kernels::constraint_iteration<DRAPE_XPBD, DRAPE_COMMIT>
-//   DRAPE_COMMIT             last iteration: write positions start + displacement
+//   DRAPE_PASS_MASS_SPRING   kernels::mass_spring_step (paper eq. 1-3), plus Cloth::step's
+//                            placement of kinematic particles. Two outputs (separate transform-
+//                            feedback buffers): v_x new positions, v_d new displacements
+//   DRAPE_PASS_PREDICT       kernels::predict<DRAPE_DASHPOT> (PBD / XPBD prediction), plus Cloth::
+//                            step's kinematic displacement; writes displacement iterate records
+//                            v_d (xyz = displacement from the substep start) [+ zeroed lambdas]
+//   DRAPE_PASS_CONSTRAINT    kernels::constraint_iteration<DRAPE_XPBD, DRAPE_COMMIT>: v_d
+//                            [+ v_lambda*] (interleaved)
+//   DRAPE_COMMIT             last iteration: two outputs (separate buffers), v_x positions
+//                            start + displacement and v_d displacements (lambdas are not kept:
+//                            the next prediction resets them)
 //   DRAPE_DASHPOT            predict with PBD's explicit dashpots
-//   DRAPE_XPBD               constraint pass is XPBD (lambdas ride in the record), else PBD
+//   DRAPE_XPBD               constraint pass is XPBD (lambdas ride in the iterate record), else PBD
 //   DRAPE_KINEMATIC          some particles have w = 0: place them on their pin path
-//   DRAPE_RECORD             vec4s per particle record: 1, or 1 + DRAPE_LAMBDA_VEC4 for XPBD
+//   DRAPE_RECORD             vec4s per displacement-iterate record (predict output, constraint
+//                            input/output): 1, or 1 + DRAPE_LAMBDA_VEC4 for XPBD. State records
+//                            (x, d) are always one vec4.
 //   DRAPE_LAMBDA_VEC4        XPBD: vec4s of lambdas per record (slots rounded up to 4)
 //   DRAPE_SLOTS              neighbour-table row length
 //
 // Data: particle records xyzw (w = inverse mass) come in as attributes (own particle) and as
-// texels of highp RGBA32F textures (neighbours; texel j*DRAPE_RECORD). The neighbour table is a
-// RGBA32UI texture, texel i*DRAPE_SLOTS+s = (index, floatBitsToUint(rest), group, 0); the
-// particle table texel i = (neighbour count, active springs, 0, 0). All textures are
-// u_tex_width texels wide (row-major).
+// texels of highp RGBA32F textures (neighbours; texel j for state records, j*DRAPE_RECORD for
+// iterate records). The neighbour table is a RGBA32UI texture, texel i*DRAPE_SLOTS+s = (index,
+// floatBitsToUint(rest), group, 0); the particle table texel i = (neighbour count, active springs,
+// 0, 0). All textures are u_tex_width texels wide (row-major).
 #if !defined(DRAPE_PASS_MASS_SPRING) && !defined(DRAPE_PASS_PREDICT) && !defined(DRAPE_PASS_CONSTRAINT)
 #define DRAPE_PASS_MASS_SPRING 1
 #endif
@@ -36,8 +47,8 @@
 precision highp float;
 precision highp int;
 
-uniform highp sampler2D u_x;        // iterate / current positions (per record)
-uniform highp sampler2D u_aux;      // MASS_SPRING, PREDICT: previous positions; CONSTRAINT: substep start
+uniform highp sampler2D u_x;        // MASS_SPRING, PREDICT: positions x; CONSTRAINT: displacement iterate
+uniform highp sampler2D u_aux;      // MASS_SPRING, PREDICT: displacements d; CONSTRAINT: substep start x
 uniform highp usampler2D u_nbr;     // neighbour table
 uniform highp usampler2D u_info;    // per particle (count, active)
 uniform int u_tex_width;
@@ -57,15 +68,18 @@ uniform float u_accel_h;
 uniform float u_jacobi_coupling;    // kJacobiCoupling
 uniform float u_along;              // kinematic path fraction at the end of this substep
 
-in vec4 a_x;                        // own record: current (MS, PREDICT) / displacement iterate
-in vec4 a_aux;                      // own: previous (MS, PREDICT) or substep start (CONSTRAINT)
+in vec4 a_x;                        // own record: position x (MS, PREDICT) / displacement iterate
+in vec4 a_aux;                      // own: displacement d (MS, PREDICT) or substep start x (CONSTRAINT)
 #ifdef DRAPE_KINEMATIC
 in vec3 a_kstart;                   // position at the start of the step
 in vec3 a_ktarget;                  // pin target at the end of the step
 #endif
 
-out vec4 v_x;
-#if defined(DRAPE_XPBD) && (defined(DRAPE_PASS_PREDICT) || defined(DRAPE_PASS_CONSTRAINT))
+#if defined(DRAPE_PASS_MASS_SPRING) || defined(DRAPE_COMMIT)
+out vec4 v_x;                       // new position record
+#endif
+out vec4 v_d;                       // new displacement (state or iterate) record
+#if defined(DRAPE_XPBD) && (defined(DRAPE_PASS_PREDICT) || (defined(DRAPE_PASS_CONSTRAINT) && !defined(DRAPE_COMMIT)))
 #if DRAPE_LAMBDA_VEC4 >= 1
 out vec4 v_lambda0;
 #endif
@@ -123,8 +137,12 @@ in vec4 a_lambda7;
 #endif
 
 ivec2 texel(int t) { return ivec2(t % u_tex_width, t / u_tex_width); }
-vec4 fetch_x(int j) { return texelFetch(u_x, texel(j * DRAPE_RECORD), 0); }
-vec4 fetch_aux(int j) { return texelFetch(u_aux, texel(j * DRAPE_RECORD), 0); }
+#ifdef DRAPE_PASS_CONSTRAINT
+vec4 fetch_x(int j) { return texelFetch(u_x, texel(j * DRAPE_RECORD), 0); }  // iterate record
+#else
+vec4 fetch_x(int j) { return texelFetch(u_x, texel(j), 0); }                 // state record
+#endif
+vec4 fetch_aux(int j) { return texelFetch(u_aux, texel(j), 0); }             // state record
 uvec4 fetch_nbr(int slot) { return texelFetch(u_nbr, texel(slot), 0); }
 uvec4 fetch_info(int i) { return texelFetch(u_info, texel(i), 0); }
 
@@ -148,22 +166,10 @@ float jacobi_scale(float wi, float wj, uint ci, uint cj, float diag, float gamma
 }
 #endif
 
-#if !defined(DRAPE_PASS_CONSTRAINT)
-// Kinematic particles move along a straight line from their start to their target (Cloth::step
-// kinematic_at); the prediction stores it as a displacement from the current position.
-vec4 place_kinematic(vec4 x) {
 #ifdef DRAPE_KINEMATIC
-    if (a_x.w == 0.0) {
-        vec3 at = a_kstart + (a_ktarget - a_kstart) * u_along;
-#ifdef DRAPE_PASS_PREDICT
-        return vec4(at - a_x.xyz, 0.0);
-#else
-        return vec4(at, 0.0);
-#endif
-    }
-#endif
-    return x;
-}
+// Kinematic particles move along a straight line from their start to their target (Cloth::step
+// kinematic_at).
+vec3 kinematic_at() { return a_kstart + (a_ktarget - a_kstart) * u_along; }
 #endif
 
 void main() {
@@ -177,30 +183,39 @@ void main() {
 #if defined(DRAPE_PASS_MASS_SPRING)
     // kernels::mass_spring_step
     if (wi == 0.0) {
-        v_x = place_kinematic(a_x);
+#ifdef DRAPE_KINEMATIC
+        // Cloth::step: x = kinematic_at, d = x - x_old
+        vec3 at = kinematic_at();
+        v_x = vec4(at, 0.0);
+        v_d = vec4(at - xi, 0.0);
+#else
+        v_x = a_x;
+        v_d = vec4(0.0);
+#endif
         return;
     }
-    vec3 vi = (xi - a_aux.xyz) * u_inv_hp;
+    vec3 vi = a_aux.xyz * u_inv_hp;
     vec3 force = vec3(0.0);
     for (int s = 0; s < count; ++s) {
         uvec4 nb = fetch_nbr(row + s);
         if (!active_group(nb.z)) continue;
         int j = int(nb.x);
-        vec3 xj = fetch_x(j).xyz;
-        vec3 vj = (xj - fetch_aux(j).xyz) * u_inv_hp;
+        vec3 vj = fetch_aux(j).xyz * u_inv_hp;
         float len;
-        vec3 n = direction(xi - xj, len);
+        vec3 n = direction(xi - fetch_x(j).xyz, len);
         float k = u_stiffness[nb.z];
         force += (-k * (len - uintBitsToFloat(nb.y)) - u_damping * dot(vi - vj, n)) * n;
     }
     vec3 a = wi * force + external_accel(vi);
-    v_x = place_kinematic(vec4(xi + (xi - a_aux.xyz) * u_h_ratio + a * (u_h * u_accel_h), wi));
+    vec3 dn = a_aux.xyz * u_h_ratio + a * (u_h * u_accel_h);
+    v_x = vec4(xi + dn, wi);
+    v_d = vec4(dn, wi);
 
 #elif defined(DRAPE_PASS_PREDICT)
     // kernels::predict<kDashpot>
-    vec3 d = vec3(0.0);
+    vec3 dn = vec3(0.0);
     if (wi != 0.0) {
-        vec3 vi = (xi - a_aux.xyz) * u_inv_hp;
+        vec3 vi = a_aux.xyz * u_inv_hp;
         vec3 a = external_accel(vi);
 #ifdef DRAPE_DASHPOT
         vec3 force = vec3(0.0);
@@ -210,18 +225,21 @@ void main() {
             if (!active_group(nb.z)) continue;
             int j = int(nb.x);
             vec4 rj = fetch_x(j);
-            vec3 xj = rj.xyz;
-            vec3 vj = (xj - fetch_aux(j).xyz) * u_inv_hp;
+            vec3 vj = fetch_aux(j).xyz * u_inv_hp;
             float len;
-            vec3 n = direction(xi - xj, len);
+            vec3 n = direction(xi - rj.xyz, len);
             float limit = 1.0 / (u_h * (wi * ci + rj.w * float(fetch_info(j).y)));
             force -= min(u_damping, limit) * dot(vi - vj, n) * n;
         }
         a += wi * force;
 #endif
-        d = (xi - a_aux.xyz) * u_h_ratio + a * (u_h * u_accel_h);
+        dn = a_aux.xyz * u_h_ratio + a * (u_h * u_accel_h);
     }
-    v_x = place_kinematic(vec4(d, wi));
+#ifdef DRAPE_KINEMATIC
+    // Cloth::step: the kinematic displacement of this substep, kinematic_at - x
+    if (wi == 0.0) dn = kinematic_at() - xi;
+#endif
+    v_d = vec4(dn, wi);
 #ifdef DRAPE_XPBD
 #if DRAPE_LAMBDA_VEC4 >= 1
     v_lambda0 = vec4(0.0);
@@ -250,7 +268,7 @@ void main() {
 #endif
 
 #elif defined(DRAPE_PASS_CONSTRAINT)
-    // kernels::constraint_iteration<kXpbd>
+    // kernels::constraint_iteration<kXpbd, kCommit>
 #ifdef DRAPE_XPBD
     float lambda[DRAPE_LAMBDA_VEC4 * 4];
 #if DRAPE_LAMBDA_VEC4 >= 1
@@ -310,12 +328,12 @@ void main() {
             dx += (wi * dl) * n;
         }
     }
+    vec3 dn = di + dx;
+    v_d = vec4(dn, wi);
 #ifdef DRAPE_COMMIT
-    v_x = vec4(si + (di + dx), wi);
-#else
-    v_x = vec4(di + dx, wi);
+    v_x = vec4(si + dn, wi);
 #endif
-#ifdef DRAPE_XPBD
+#if defined(DRAPE_XPBD) && !defined(DRAPE_COMMIT)
 #if DRAPE_LAMBDA_VEC4 >= 1
     v_lambda0 = vec4(lambda[0], lambda[1], lambda[2], lambda[3]);
 #endif

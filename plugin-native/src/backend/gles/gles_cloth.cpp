@@ -62,8 +62,8 @@ std::vector<Grave>& graveyard() {
 }
 
 void delete_now(GlObjects& o) {
-    glDeleteBuffers(3, o.buffers);
-    glDeleteTextures(3, o.textures);
+    glDeleteBuffers(4, o.buffers);
+    glDeleteTextures(4, o.textures);
     GLuint tex[3] = {o.nbr_tex, o.info_tex, o.tri_tex};
     glDeleteTextures(3, tex);
     GLuint bufs[4] = {o.kstart, o.targets, o.vertex_to_particle, o.scratch};
@@ -168,7 +168,7 @@ std::string with_defines(const char* source, const std::string& defines) {
 }
 
 Result link(const std::string& vs_source, const char* name, const std::vector<std::string>& varyings,
-            const std::vector<std::pair<GLuint, const char*>>& attribs, GLuint* out) {
+            GLenum buffer_mode, const std::vector<std::pair<GLuint, const char*>>& attribs, GLuint* out) {
     GLuint vs = 0, fs = 0;
     if (Result r = compile(GL_VERTEX_SHADER, vs_source, name, &vs); !r.ok()) return r;
     if (Result r = compile(GL_FRAGMENT_SHADER, shaders::discard_frag, "discard.frag.glsl", &fs); !r.ok()) {
@@ -181,7 +181,7 @@ Result link(const std::string& vs_source, const char* name, const std::vector<st
     for (auto& a : attribs) glBindAttribLocation(p, a.first, a.second);
     std::vector<const char*> names;
     for (auto& v : varyings) names.push_back(v.c_str());
-    glTransformFeedbackVaryings(p, GLsizei(names.size()), names.data(), GL_INTERLEAVED_ATTRIBS);
+    glTransformFeedbackVaryings(p, GLsizei(names.size()), names.data(), buffer_mode);
     glLinkProgram(p);
     glDeleteShader(vs);
     glDeleteShader(fs);
@@ -373,19 +373,20 @@ Result GlesCloth::sync_gpu() {
     if (want != record_) {
         if (gpu_newer_ && record_ != 0)
             if (Result r = pull(); !r.ok()) return r;
-        glDeleteBuffers(3, gl_.buffers);
-        glDeleteTextures(3, gl_.textures);
+        glDeleteBuffers(4, gl_.buffers);
+        glDeleteTextures(4, gl_.textures);
         record_ = want;
+        // Every buffer can hold iterate records (R vec4s); state records use the first n vec4s.
         tex_rows_ = rows_for(uint64_t(n) * record_);
         const GLsizeiptr bytes = GLsizeiptr(tex_rows_) * kTexWidth * 16;
-        glGenBuffers(3, gl_.buffers);
-        for (int b = 0; b < 3; ++b) {
+        glGenBuffers(4, gl_.buffers);
+        for (int b = 0; b < 4; ++b) {
             glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[b]);
             glBufferData(GL_ARRAY_BUFFER, bytes, nullptr, GL_DYNAMIC_COPY);
             gl_.textures[b] = make_texture(GL_RGBA32F, tex_rows_);
         }
         glBindBuffer(GL_ARRAY_BUFFER, gl_.kstart);
-        glBufferData(GL_ARRAY_BUFFER, bytes, nullptr, GL_DYNAMIC_COPY);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(size_t(n) * sizeof(Particle)), nullptr, GL_DYNAMIC_COPY);
         glBindBuffer(GL_ARRAY_BUFFER, 0);
         state_dirty_ = true;
     }
@@ -412,13 +413,12 @@ Result GlesCloth::sync_gpu() {
 }
 
 void GlesCloth::push_state() {
+    // State records (positions x -> role cur, displacements d -> role disp) are one vec4 each.
     const uint32_t n = topo_.particle_count;
-    std::vector<Particle> records(size_t(n) * record_, Particle(0.0f));
     const int sources[2] = {cur_, disp_};
     for (int k = 0; k < 2; ++k) {
-        for (uint32_t i = 0; i < n; ++i) records[size_t(i) * record_] = buffers_[sources[k]][i];
         glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[g_[k]]);
-        glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(records.size() * sizeof(Particle)), records.data());
+        glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(n) * sizeof(Particle)), buffers_[sources[k]].data());
         refresh_texture(g_[k]);
     }
     glBindBuffer(GL_ARRAY_BUFFER, 0);
@@ -441,19 +441,19 @@ Result GlesCloth::pull() {
     if (!context_current(&why))
         return {DRAPE_ERROR_BACKEND_UNAVAILABLE, "reading a GLES cloth back needs its GL context: " + why};
     const uint32_t n = topo_.particle_count;
-    const int targets[2] = {cur_, disp_};
+    const int targets[2] = {cur_, disp_};  // GPU roles cur (x) and disp (d)
     GLint bound = 0;
     glGetIntegerv(GL_COPY_READ_BUFFER_BINDING, &bound);
     for (int k = 0; k < 2; ++k) {
         glBindBuffer(GL_COPY_READ_BUFFER, gl_.buffers[g_[k]]);
         const auto* src = static_cast<const Particle*>(
-            glMapBufferRange(GL_COPY_READ_BUFFER, 0, GLsizeiptr(size_t(n) * record_ * sizeof(Particle)), GL_MAP_READ_BIT));
+            glMapBufferRange(GL_COPY_READ_BUFFER, 0, GLsizeiptr(size_t(n) * sizeof(Particle)), GL_MAP_READ_BIT));
         if (!src) {
             Result r = gl_error("glMapBufferRange (readback)");
             glBindBuffer(GL_COPY_READ_BUFFER, GLuint(bound));
             return r.ok() ? Result{DRAPE_ERROR_GL, "glMapBufferRange returned NULL (readback)"} : r;
         }
-        for (uint32_t i = 0; i < n; ++i) buffers_[targets[k]][i] = src[size_t(i) * record_];
+        std::memcpy(buffers_[targets[k]].data(), src, size_t(n) * sizeof(Particle));  // state records
         glUnmapBuffer(GL_COPY_READ_BUFFER);
     }
     glBindBuffer(GL_COPY_READ_BUFFER, GLuint(bound));
@@ -508,8 +508,13 @@ Result GlesCloth::program(int pass, Program** out) {
     const std::string defines = variant_defines(pass);
     auto it = programs_.find(defines);
     if (it == programs_.end()) {
-        std::vector<std::string> varyings{"v_x"};
-        const bool xpbd = params_.model == DRAPE_MODEL_XPBD && pass != kMassSpring;
+        // Mass-spring and commit: positions and displacements into two buffers (separate attribs);
+        // predict and constraint: one displacement-iterate record [+ lambdas] (interleaved).
+        const bool two_outputs = pass == kMassSpring || pass == kCommit;
+        std::vector<std::string> varyings;
+        if (two_outputs) varyings = {"v_x", "v_d"};
+        else varyings = {"v_d"};
+        const bool xpbd = params_.model == DRAPE_MODEL_XPBD && (pass == kPredict || pass == kConstraint);
         if (xpbd)
             for (uint32_t k = 0; k + 1 < record_vec4(); ++k) varyings.push_back("v_lambda" + std::to_string(k));
         std::vector<std::pair<GLuint, const char*>> attribs{{aX, "a_x"}, {aAux, "a_aux"}, {aKStart, "a_kstart"},
@@ -518,7 +523,9 @@ Result GlesCloth::program(int pass, Program** out) {
                                                                  "a_lambda4", "a_lambda5", "a_lambda6", "a_lambda7"};
         for (uint32_t k = 0; k < kMaxLambdaVec4; ++k) attribs.push_back({aLambda0 + k, lambda_names[k]});
         Program p;
-        if (Result r = link(with_defines(shaders::sim_vert, defines), "sim.vert.glsl", varyings, attribs, &p.id); !r.ok())
+        if (Result r = link(with_defines(shaders::sim_vert, defines), "sim.vert.glsl", varyings,
+                            two_outputs ? GL_SEPARATE_ATTRIBS : GL_INTERLEAVED_ATTRIBS, attribs, &p.id);
+            !r.ok())
             return r;
         for (int u = 0; u < kUniformCount; ++u) p.u[u] = glGetUniformLocation(p.id, kUniformNames[u]);
         gl_.programs.push_back(p.id);
@@ -529,8 +536,7 @@ Result GlesCloth::program(int pass, Program** out) {
 }
 
 Result GlesCloth::output_program(Program** out) {
-    std::string d = "#define DRAPE_RECORD " + std::to_string(record_) + "\n";
-    d += "#define DRAPE_TRI_SLOTS " + std::to_string(tri_slots_) + "\n";
+    std::string d = "#define DRAPE_TRI_SLOTS " + std::to_string(tri_slots_) + "\n";
     if (out_layout_.position_offset >= 0) d += "#define DRAPE_WRITE_POSITION 1\n";
     if (out_layout_.normal_offset >= 0) d += "#define DRAPE_WRITE_NORMAL 1\n";
     std::string decls, copies;
@@ -564,7 +570,9 @@ Result GlesCloth::output_program(Program** out) {
         std::vector<std::pair<GLuint, const char*>> attribs{{aParticle, "a_particle"}};
         for (size_t k = 0; k < keeps_.size(); ++k) attribs.push_back({GLuint(aKeep0 + k), keep_names[k].c_str()});
         Program p;
-        if (Result r = link(with_defines(shaders::output_vert, d), "output.vert.glsl", varyings, attribs, &p.id); !r.ok())
+        if (Result r = link(with_defines(shaders::output_vert, d), "output.vert.glsl", varyings, GL_INTERLEAVED_ATTRIBS,
+                            attribs, &p.id);
+            !r.ok())
             return r;
         for (int u = 0; u < kUniformCount; ++u) p.u[u] = glGetUniformLocation(p.id, kUniformNames[u]);
         gl_.programs.push_back(p.id);
@@ -574,9 +582,12 @@ Result GlesCloth::output_program(Program** out) {
     return {};
 }
 
-void GlesCloth::run_pass(Program& p, int x, int aux, int out, bool constraint, float along, const float* sub) {
+void GlesCloth::run_pass(Program& p, int x, int aux, int out, int out2, bool constraint, float along,
+                         const float* sub) {
     const uint32_t n = topo_.particle_count;
-    const GLsizei stride = GLsizei(record_ * sizeof(Particle));
+    constexpr GLsizei kState = GLsizei(sizeof(Particle));             // x, d, substep start, kstart
+    const GLsizei iterate = GLsizei(record_ * sizeof(Particle));      // displacement iterates
+    const GLsizei stride = constraint ? iterate : kState;              // a_x's buffer
     glUseProgram(p.id);
     glUniform1i(p.u[uX], 0);
     glUniform1i(p.u[uAux], 1);
@@ -612,11 +623,11 @@ void GlesCloth::run_pass(Program& p, int x, int aux, int out, bool constraint, f
         }
     glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[aux]);
     glEnableVertexAttribArray(aAux);
-    glVertexAttribPointer(aAux, 4, GL_FLOAT, GL_FALSE, stride, nullptr);
+    glVertexAttribPointer(aAux, 4, GL_FLOAT, GL_FALSE, kState, nullptr);
     if (!constraint && !kinematic_.empty()) {
         glBindBuffer(GL_ARRAY_BUFFER, gl_.kstart);
         glEnableVertexAttribArray(aKStart);
-        glVertexAttribPointer(aKStart, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
+        glVertexAttribPointer(aKStart, 3, GL_FLOAT, GL_FALSE, kState, nullptr);
         glBindBuffer(GL_ARRAY_BUFFER, gl_.targets);
         glEnableVertexAttribArray(aKTarget);
         glVertexAttribPointer(aKTarget, 3, GL_FLOAT, GL_FALSE, 12, nullptr);
@@ -625,12 +636,21 @@ void GlesCloth::run_pass(Program& p, int x, int aux, int out, bool constraint, f
     glBindTexture(GL_TEXTURE_2D, gl_.textures[x]);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, gl_.textures[aux]);
-    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[out], 0, GLsizeiptr(size_t(n) * stride));
+    if (out2 >= 0) {
+        // Separate attribs: v_x -> binding 0, v_d -> binding 1, one state record each.
+        glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[out], 0, GLsizeiptr(size_t(n) * kState));
+        glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 1, gl_.buffers[out2], 0, GLsizeiptr(size_t(n) * kState));
+    } else {
+        // Interleaved: one displacement-iterate record per particle.
+        glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[out], 0, GLsizeiptr(size_t(n) * iterate));
+    }
     glBeginTransformFeedback(GL_POINTS);
     glDrawArrays(GL_POINTS, 0, GLsizei(n));
     glEndTransformFeedback();
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    if (out2 >= 0) glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, 0);
     refresh_texture(out);
+    if (out2 >= 0) refresh_texture(out2);
 }
 
 Result GlesCloth::step(float dt) {
@@ -693,8 +713,7 @@ Result GlesCloth::gpu_step(float dt) {
         // Kinematic particles move from where they are now (GPU copy, no readback).
         glBindBuffer(GL_COPY_READ_BUFFER, gl_.buffers[g_[0]]);
         glBindBuffer(GL_COPY_WRITE_BUFFER, gl_.kstart);
-        glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0,
-                            GLsizeiptr(size_t(n) * record_ * sizeof(Particle)));
+        glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, GLsizeiptr(size_t(n) * sizeof(Particle)));
     }
     // sub: stiffness[3], compliance[3], damping_ratio[3], h, 1/h_prev, accel_h, h/h_prev
     // (computed on the CPU exactly as Cloth::step does, so the shader sees the same bits).
@@ -706,30 +725,39 @@ Result GlesCloth::gpu_step(float dt) {
         sub[6 + g] = k > 0 ? params_.damping / (k * h) : 0.0f;
     }
     sub[9] = h;
+    // Buffer roles as Cloth::step: cur (positions x), disp (displacements d), spare, spare2.
     int& cur = g_[0];
-    int& prev = g_[1];
+    int& disp = g_[1];
     int& spare = g_[2];
+    int& spare2 = g_[3];
     for (uint32_t s = 0; s < substeps; ++s) {
         sub[10] = 1.0f / h_prev_;
         sub[11] = fresh_ ? 0.5f * h : 0.5f * (h + h_prev_);
         sub[12] = h / h_prev_;
         const float along = float(s + 1) / float(substeps);
         if (model == DRAPE_MODEL_MASS_SPRING) {
-            run_pass(*p_first, cur, prev, spare, false, along, sub);
-            std::swap(prev, cur);
+            // x -> spare, d -> spare2 (kinematic particles placed in the same pass).
+            run_pass(*p_first, cur, disp, spare, spare2, false, along, sub);
             std::swap(cur, spare);
+            std::swap(disp, spare2);
         } else {
-            run_pass(*p_first, cur, prev, spare, false, along, sub);
-            int in = spare, out = prev;
-            // Displacements iterate spare <-> prev; the last iteration commits positions.
+            // predict: displacements into spare; iterate spare <-> spare2; the last iteration
+            // also writes positions, into the displacement buffer (free after predict).
+            run_pass(*p_first, cur, disp, spare, -1, false, along, sub);
+            int in = spare, out = spare2;
             for (uint32_t it = 0; it < params_.iterations; ++it) {
-                run_pass(it + 1 == params_.iterations ? *p_commit : *p_constraint, in, cur, out, true, along, sub);
+                if (it + 1 == params_.iterations)
+                    run_pass(*p_commit, in, cur, disp, out, true, along, sub);  // x -> disp, d -> out
+                else
+                    run_pass(*p_constraint, in, cur, out, -1, true, along, sub);
                 std::swap(in, out);
             }
-            const int result = in, other = in == spare ? prev : spare;
-            prev = cur;
-            cur = result;
-            spare = other;
+            // Positions went to the old displacement buffer, displacements to `in`.
+            const int old_cur = cur;
+            cur = disp;
+            disp = in;
+            spare = old_cur;
+            spare2 = out;
         }
         h_prev_ = h;
         fresh_ = false;

@@ -1,15 +1,19 @@
 // OpenGL ES 3.0 transform-feedback backend: a Cloth whose state lives in GL buffers.
 //
 // Data on the GPU (per cloth; W = kTexWidth texels per texture row):
-//   particle buffers x3 (ping-pong, roles rotate like Cloth's cur/prev/spare): records of R vec4s,
-//     R = 1 (xyz + inverse mass) or, for XPBD, 1 + ceil(slots/4) (record + lambdas per slot);
+//   particle buffers x4 (ping-pong, roles rotate like Cloth's cur/disp/spare/spare2). The state is
+//     as on the CPU (kernels.h): positions x and displacements d over the last substep, one vec4
+//     record per particle (xyz + inverse mass). PBD/XPBD displacement iterates are records of
+//     R vec4s, R = 1 or, for XPBD, 1 + ceil(slots/4) (record + lambdas per slot); every buffer is
+//     sized for R, and its layout follows its current role. The mass-spring pass and the last
+//     constraint iteration write x and d at once (separate-attribs transform feedback);
 //   one RGBA32F texture per particle buffer, refreshed on the GPU after every pass that writes the
 //     buffer (GL_PIXEL_UNPACK_BUFFER + glTexSubImage2D): neighbours are read with texelFetch;
 //   RGBA32UI textures: neighbour table (index, rest bits, group), particle info (count, active,
 //     triangles), incident triangles (normals);
 //   kinematic start (copied on the GPU at step start) and pin targets (uploaded when pins move).
 // Nothing is read back on the step path; pull() (explicit readback, get_stats, setters that need
-// the current state) maps the two state buffers once.
+// the current state) maps the two state buffers (x, d) once.
 //
 // Two modes. Immediate: a GL ES 3 context is current on the thread that creates and steps the
 // cloth (tests, samples). RenderThread (Unity): the main thread only records steps and edits; the
@@ -42,8 +46,8 @@ void render_thread_shutdown();
 
 /// GL objects of one cloth (names; 0 = none).
 struct GlObjects {
-    GLuint buffers[3] = {};
-    GLuint textures[3] = {};
+    GLuint buffers[4] = {};
+    GLuint textures[4] = {};
     GLuint nbr_tex = 0, info_tex = 0, tri_tex = 0;
     GLuint kstart = 0, targets = 0, vertex_to_particle = 0, scratch = 0;
     GLuint vao = 0, fbo = 0, rbo = 0;
@@ -109,7 +113,9 @@ private:
     void refresh_texture(int b);
     Result program(int pass, Program** out);
     Result output_program(Program** out);
-    void run_pass(Program& p, int x, int aux, int out, bool constraint, float along, const float* sub);
+    /// One transform-feedback pass over the particles: reads buffers x and aux, writes `out` (and
+    /// `out2` >= 0 for the two-output passes: out gets v_x, out2 v_d).
+    void run_pass(Program& p, int x, int aux, int out, int out2, bool constraint, float along, const float* sub);
     Result write_output();
     void compute_cpu_stats();
     uint32_t record_vec4() const;
@@ -123,12 +129,12 @@ private:
     GlObjects gl_;
     std::map<std::string, Program> programs_;
     bool gl_ready_ = false;
-    int g_[3] = {0, 1, 2};  // GPU buffer roles: cur, prev, spare
+    int g_[4] = {0, 1, 2, 3};  // GPU buffer roles: cur (x), disp (d), spare, spare2
     uint32_t record_ = 1;   // R of the allocated buffers
     uint32_t tex_rows_ = 0; // rows of the particle textures
     uint32_t tri_slots_ = 1;
     bool gpu_newer_ = false;       // CPU copy is stale
-    bool state_dirty_ = true;      // push CPU cur/prev
+    bool state_dirty_ = true;      // push CPU cur/disp
     bool targets_dirty_ = true;
     bool info_dirty_ = true;
 
