@@ -247,7 +247,7 @@ TEST(Physics, R9MomentumIsConserved) {
             for (int a = 0; a < 3; ++a) com[a] += x[3 * i + a] / inv[i];
         for (int a = 0; a < 3; ++a) {
             const double expected = (com0[a] + vcom[a] * 120 * dt) / total;
-            EXPECT_NEAR(com[a] / total, expected, 1e-4) << "model " << model << " axis " << a;
+            EXPECT_NEAR(com[a] / total, expected, 1e-5) << "model " << model << " axis " << a;
         }
     }
 }

@@ -22,6 +22,7 @@ Cloth::Cloth(World& world, drape_backend backend, Topology topology)
     for (auto& b : buffers_) b.resize(n);
     for (uint32_t i = 0; i < n; ++i) buffers_[cur_][i] = Particle(topo_.rest_position[i], 0.0f);
     lambda_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
+    slot_coef_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
     active_count_.resize(n);
     kinematic_.reserve(n);
     kinematic_start_.resize(n);
@@ -225,6 +226,14 @@ Result Cloth::step(float dt) {
     c.air_drag = params_.air_drag;
     c.damping = params_.damping;
     c.h = h;
+    if (model == DRAPE_MODEL_XPBD)
+        for_particles([&](uint32_t b, uint32_t e) {
+            kernels::spring_coefficients<true>(c, buffers_[cur_].data(), slot_coef_.data(), b, e);
+        });
+    else if (model == DRAPE_MODEL_PBD)
+        for_particles([&](uint32_t b, uint32_t e) {
+            kernels::spring_coefficients<false>(c, buffers_[cur_].data(), slot_coef_.data(), b, e);
+        });
 
     for (uint32_t sub = 0; sub < substeps; ++sub) {
         c.h_prev = h_prev_;
@@ -257,15 +266,16 @@ Result Cloth::step(float dt) {
             for (uint32_t k : kinematic_) spare[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
             int in = spare_, out = spare2_;
             const bool xpbd = model == DRAPE_MODEL_XPBD;
+            const float* coef = slot_coef_.data();
             for (uint32_t it = 0; it < params_.iterations; ++it) {
                 const bool last = it + 1 == params_.iterations;
                 Particle* src = buffers_[in].data();
                 Particle* dst = buffers_[out].data();
                 for_particles([&](uint32_t b, uint32_t e) {
-                    if (xpbd && last) kernels::constraint_iteration<true, true>(c, src, cur, dst, disp, b, e);
-                    else if (xpbd) kernels::constraint_iteration<true, false>(c, src, cur, dst, nullptr, b, e);
-                    else if (last) kernels::constraint_iteration<false, true>(c, src, cur, dst, disp, b, e);
-                    else kernels::constraint_iteration<false, false>(c, src, cur, dst, nullptr, b, e);
+                    if (xpbd && last) kernels::constraint_iteration<true, true>(c, coef, src, cur, dst, disp, b, e);
+                    else if (xpbd) kernels::constraint_iteration<true, false>(c, coef, src, cur, dst, nullptr, b, e);
+                    else if (last) kernels::constraint_iteration<false, true>(c, coef, src, cur, dst, disp, b, e);
+                    else kernels::constraint_iteration<false, false>(c, coef, src, cur, dst, nullptr, b, e);
                 });
                 std::swap(in, out);
             }

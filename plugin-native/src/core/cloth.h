@@ -103,6 +103,7 @@ protected:
     float h_prev_ = 1.0f;   ///< previous substep; velocity = disp / h_prev
     bool fresh_ = true;     ///< next substep is the first since positions/velocities were set
     std::vector<float> lambda_;
+    std::vector<float> slot_coef_;  ///< per-spring Jacobi factor of the current step (kernels.h)
 
     // Masses and pins.
     std::vector<float> base_inverse_mass_;   ///< per particle, before pinning

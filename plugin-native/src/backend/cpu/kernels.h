@@ -155,44 +155,65 @@ inline float jacobi_scale(float wi, float wj, uint32_t ci, uint32_t cj, float di
     return 1.0f / (1.0f + kJacobiCoupling * off / diag);
 }
 
+/// Per-spring factor of a Jacobi update, computed once per step (it depends on h, the masses and
+/// the active springs, none of which change between substeps): XPBD's 1/diag and PBD's k/wsum,
+/// each times jacobi_scale. Written for row i's slots; symmetric in i and j.
+template <bool kXpbd>
+inline void spring_coefficients(const SubstepContext& c, const Particle* x, float* coef, uint32_t begin, uint32_t end) {
+    for (uint32_t i = begin; i < end; ++i) {
+        const float wi = x[i].w;
+        const size_t row = size_t(i) * c.slots;
+        for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
+            const size_t slot = row + s;
+            coef[slot] = 0.0f;
+            if (!active_slot(c, slot) || wi == 0.0f) continue;
+            const uint32_t j = c.nbr_index[slot];
+            const uint8_t g = c.nbr_group[slot];
+            const float wj = x[j].w;
+            const float wsum = wi + wj;
+            if (kXpbd) {
+                const float gamma = c.groups.damping_ratio[g];
+                const float diag = (1.0f + gamma) * wsum + c.groups.compliance[g];
+                coef[slot] = jacobi_scale(wi, wj, c.active_count[i], c.active_count[j], diag, 1.0f + gamma) / diag;
+            } else {
+                coef[slot] = c.groups.stiffness[g] * jacobi_scale(wi, wj, c.active_count[i], c.active_count[j], wsum, 1.0f) / wsum;
+            }
+        }
+    }
+}
+
 /// One PBD (paper eq. 7-8, stiffness k per iteration) or XPBD (Macklin 2016 eq. 18 with the
 /// damping term of eq. 26) Jacobi iteration on displacements `disp` from the substep start
 /// `start`; writes displacements to `out` and, with kCommit (the last iteration), also the new
-/// positions start + displacement to `x_out`. Symmetric in i and j, so both copies of each lambda
+/// positions start + displacement to `x_out`. `coef` from spring_coefficients (0 for inactive
+/// springs, which then contribute nothing). Symmetric in i and j, so both copies of each lambda
 /// stay equal.
 template <bool kXpbd, bool kCommit>
-inline void constraint_iteration(const SubstepContext& c, const Particle* disp, const Particle* start, Particle* out,
-                                 Particle* x_out, uint32_t begin, uint32_t end) {
+inline void constraint_iteration(const SubstepContext& c, const float* coef, const Particle* disp,
+                                 const Particle* start, Particle* out, Particle* x_out, uint32_t begin, uint32_t end) {
     for (uint32_t i = begin; i < end; ++i) {
         const float wi = disp[i].w;
         const glm::vec3 di(disp[i]);
         const glm::vec3 si(start[i]);
         glm::vec3 dx(0.0f);
         if (wi != 0.0f) {
-            const uint32_t ci = c.active_count[i];
             const size_t row = size_t(i) * c.slots;
-            for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
+            const uint32_t count = c.nbr_count[i];
+            for (uint32_t s = 0; s < count; ++s) {
                 const size_t slot = row + s;
-                if (!active_slot(c, slot)) continue;
                 const uint32_t j = c.nbr_index[slot];
-                const uint8_t g = c.nbr_group[slot];
-                const float wj = disp[j].w;
                 const glm::vec3 dij = di - glm::vec3(disp[j]);
                 float len;
                 const glm::vec3 n = direction((si - glm::vec3(start[j])) + dij, &len);
                 const float constraint = len - c.nbr_rest[slot];
-                const float wsum = wi + wj;
                 float dl;
                 if (kXpbd) {
-                    const float alpha = c.groups.compliance[g];
-                    const float gamma = c.groups.damping_ratio[g];
-                    const float diag = (1.0f + gamma) * wsum + alpha;
-                    dl = (-constraint - alpha * c.lambda[slot] - gamma * glm::dot(n, dij)) / diag;
-                    dl *= jacobi_scale(wi, wj, ci, c.active_count[j], diag, 1.0f + gamma);
+                    const uint8_t g = c.nbr_group[slot];
+                    dl = (-constraint - c.groups.compliance[g] * c.lambda[slot] -
+                          c.groups.damping_ratio[g] * glm::dot(n, dij)) * coef[slot];
                     c.lambda[slot] += dl;
                 } else {
-                    dl = -constraint / wsum * c.groups.stiffness[g];
-                    dl *= jacobi_scale(wi, wj, ci, c.active_count[j], wsum, 1.0f);
+                    dl = -constraint * coef[slot];
                 }
                 dx += (wi * dl) * n;
             }
