@@ -15,6 +15,10 @@ namespace drape {
 
 class ThreadPool {
 public:
+    /// Below this many items a pass runs on the caller alone: a particle pass over fewer is a few
+    /// microseconds, about what waking and joining the workers costs.
+    static constexpr uint32_t kMinParallelCount = 2048;
+
     /// threads: total including the calling thread (>= 1).
     explicit ThreadPool(uint32_t threads);
     ~ThreadPool();
@@ -28,7 +32,7 @@ public:
     template <class Fn>
     void parallel_for(uint32_t count, Fn&& fn) {
         const uint32_t n = size();
-        if (n == 1 || count < 2 * n) {
+        if (n == 1 || count < kMinParallelCount) {
             fn(0u, count);
             return;
         }
