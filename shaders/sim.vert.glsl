@@ -17,6 +17,11 @@
 //   DRAPE_COMMIT             last iteration: two outputs (separate buffers), v_x positions
 //                            start + displacement and v_d displacements (lambdas are not kept:
 //                            the next prediction resets them)
+//   DRAPE_PASS_TETHER        kernels::tether after the solve of a substep (only compiled and run
+//                            when the cloth has tethers: max_stretch > 0 and kinematic particles).
+//                            Two outputs like MASS_SPRING: v_x, v_d. Own x and d as attributes,
+//                            the anchor's position from u_x; anchor index and length per particle
+//                            as attributes (uploaded when the tethers change)
 //   DRAPE_DASHPOT            predict with PBD's explicit dashpots
 //   DRAPE_XPBD               constraint pass is XPBD (lambdas ride in the iterate record), else PBD
 //   DRAPE_KINEMATIC          some particles have w = 0: place them on their pin path
@@ -31,7 +36,8 @@
 // iterate records). The neighbour table is a RGBA32UI texture, texel i*DRAPE_SLOTS+s = (index,
 // floatBitsToUint(rest), group, 0); the particle table texel i = (neighbour count, active springs,
 // 0, 0). All textures are u_tex_width texels wide (row-major).
-#if !defined(DRAPE_PASS_MASS_SPRING) && !defined(DRAPE_PASS_PREDICT) && !defined(DRAPE_PASS_CONSTRAINT)
+#if !defined(DRAPE_PASS_MASS_SPRING) && !defined(DRAPE_PASS_PREDICT) && !defined(DRAPE_PASS_CONSTRAINT) && \
+    !defined(DRAPE_PASS_TETHER)
 #define DRAPE_PASS_MASS_SPRING 1
 #endif
 #ifndef DRAPE_SLOTS
@@ -47,7 +53,7 @@
 precision highp float;
 precision highp int;
 
-uniform highp sampler2D u_x;        // MASS_SPRING, PREDICT: positions x; CONSTRAINT: displacement iterate
+uniform highp sampler2D u_x;        // MASS_SPRING, PREDICT, TETHER: positions x; CONSTRAINT: displacement iterate
 uniform highp sampler2D u_aux;      // MASS_SPRING, PREDICT: displacements d; CONSTRAINT: substep start x
 uniform highp usampler2D u_nbr;     // neighbour table
 uniform highp usampler2D u_info;    // per particle (count, active)
@@ -69,13 +75,17 @@ uniform float u_jacobi_coupling;    // kJacobiCoupling
 uniform float u_along;              // kinematic path fraction at the end of this substep
 
 in vec4 a_x;                        // own record: position x (MS, PREDICT) / displacement iterate
-in vec4 a_aux;                      // own: displacement d (MS, PREDICT) or substep start x (CONSTRAINT)
+in vec4 a_aux;                      // own: displacement d (MS, PREDICT, TETHER) or substep start x (CONSTRAINT)
+#ifdef DRAPE_PASS_TETHER
+in uint a_tether_anchor;            // Cloth::tether_anchor_
+in float a_tether_length;           // Cloth::tether_length_ (< 0: no tether)
+#endif
 #ifdef DRAPE_KINEMATIC
 in vec3 a_kstart;                   // position at the start of the step
 in vec3 a_ktarget;                  // pin target at the end of the step
 #endif
 
-#if defined(DRAPE_PASS_MASS_SPRING) || defined(DRAPE_COMMIT)
+#if defined(DRAPE_PASS_MASS_SPRING) || defined(DRAPE_COMMIT) || defined(DRAPE_PASS_TETHER)
 out vec4 v_x;                       // new position record
 #endif
 out vec4 v_d;                       // new displacement (state or iterate) record
@@ -176,6 +186,20 @@ void main() {
     int i = gl_VertexID;
     vec3 xi = a_x.xyz;
     float wi = a_x.w;
+#ifdef DRAPE_PASS_TETHER
+    // kernels::tether (the CPU updates in place; anchors are kinematic, so they do not move here)
+    v_x = a_x;
+    v_d = a_aux;
+    float limit = a_tether_length;
+    if (limit < 0.0 || wi == 0.0) return;
+    float len;
+    vec3 n = direction(xi - fetch_x(int(a_tether_anchor)).xyz, len);
+    if (len <= limit) return;
+    vec3 pull = n * (limit - len);
+    v_x = vec4(xi + pull, wi);
+    v_d = vec4(a_aux.xyz + pull, a_aux.w);
+    return;
+#endif
     uvec4 info = fetch_info(i);
     int count = int(info.x);
     int row = i * DRAPE_SLOTS;

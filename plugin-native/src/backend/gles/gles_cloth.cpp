@@ -23,7 +23,7 @@ constexpr uint32_t kTexWidth = 1024;
 /// XPBD lambdas ride in the record as vec4s; sim.vert.glsl declares up to 8 (32 slots).
 constexpr uint32_t kMaxLambdaVec4 = 8;
 
-enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3 };  // kCommit: last iteration
+enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3, kTether = 4 };  // kCommit: last iteration
 enum Uniform {
     uX, uAux, uNbr, uInfo, uTexWidth, uStiffness, uCompliance, uDampingRatio, uActive, uGravity, uWind, uAirDrag,
     uDamping, uH, uInvHp, uAccelH, uCoupling, uAlong, uTris, uHRatio, kUniformCount
@@ -33,7 +33,10 @@ const char* const kUniformNames[kUniformCount] = {
     "u_gravity", "u_wind", "u_air_drag", "u_damping", "u_h", "u_inv_hp", "u_accel_h", "u_jacobi_coupling",
     "u_along", "u_tris", "u_h_ratio"};
 // Attribute locations (bound before linking).
-enum Attrib { aX = 0, aAux = 1, aKStart = 2, aKTarget = 3, aLambda0 = 4, aParticle = 0, aKeep0 = 1 };
+enum Attrib {
+    aX = 0, aAux = 1, aKStart = 2, aKTarget = 3, aLambda0 = 4, aTetherAnchor = 12, aTetherLength = 13,
+    aParticle = 0, aKeep0 = 1
+};
 constexpr int kMaxAttribs = 16;
 // Texture units: 0 u_x, 1 u_aux, 2 u_nbr, 3 u_info, 4 u_tris, 5 scratch unit for refreshes.
 constexpr int kRefreshUnit = 5;
@@ -66,8 +69,8 @@ void delete_now(GlObjects& o) {
     glDeleteTextures(4, o.textures);
     GLuint tex[3] = {o.nbr_tex, o.info_tex, o.tri_tex};
     glDeleteTextures(3, tex);
-    GLuint bufs[4] = {o.kstart, o.targets, o.vertex_to_particle, o.scratch};
-    glDeleteBuffers(4, bufs);
+    GLuint bufs[5] = {o.kstart, o.targets, o.vertex_to_particle, o.scratch, o.tethers};
+    glDeleteBuffers(5, bufs);
     if (o.vao) glDeleteVertexArrays(1, &o.vao);
     if (o.fbo) glDeleteFramebuffers(1, &o.fbo);
     if (o.rbo) glDeleteRenderbuffers(1, &o.rbo);
@@ -304,6 +307,8 @@ Result GlesCloth::init_gl() {
     if (first == kPredict)
         for (int pass : {kConstraint, kCommit})
             if (Result r = program(pass, &p); !r.ok()) return r;
+    if (has_tethers())
+        if (Result r = program(kTether, &p); !r.ok()) return r;
     return gl_error("creating the GLES cloth");
 }
 
@@ -329,6 +334,8 @@ Result GlesCloth::ensure_gl() {
     glGenBuffers(1, &gl_.targets);
     glGenBuffers(1, &gl_.vertex_to_particle);
     glGenBuffers(1, &gl_.kstart);
+    glGenBuffers(1, &gl_.tethers);
+    tethers_uploaded_.clear();
     // Static tables.
     const NeighbourTable& nb = topo_.nbr;
     const uint32_t nbr_rows = rows_for(uint64_t(n) * nb.slots);
@@ -407,6 +414,18 @@ Result GlesCloth::sync_gpu() {
             texels[4 * i + 2] = incident[i];
         }
         upload_uint_texture(gl_.info_tex, rows_for(n), texels);
+        // Tethers change only with the set of kinematic particles or max_stretch: upload then.
+        texels.resize(size_t(n) * 2);
+        for (uint32_t i = 0; i < n; ++i) {
+            texels[2 * i] = tether_anchor_[i];
+            std::memcpy(&texels[2 * i + 1], &tether_length_[i], 4);
+        }
+        if (texels != tethers_uploaded_) {
+            glBindBuffer(GL_ARRAY_BUFFER, gl_.tethers);
+            glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(texels.size() * 4), texels.data(), GL_DYNAMIC_DRAW);
+            glBindBuffer(GL_ARRAY_BUFFER, 0);
+            tethers_uploaded_ = texels;
+        }
         info_dirty_ = false;
     }
     return gl_error("uploading cloth state");
@@ -495,6 +514,7 @@ std::string GlesCloth::variant_defines(int pass) const {
     if (pass == kPredict) d += "#define DRAPE_PASS_PREDICT 1\n";
     if (pass == kConstraint || pass == kCommit) d += "#define DRAPE_PASS_CONSTRAINT 1\n";
     if (pass == kCommit) d += "#define DRAPE_COMMIT 1\n";
+    if (pass == kTether) d += "#define DRAPE_PASS_TETHER 1\n";
     if (pass == kPredict && params_.model == DRAPE_MODEL_PBD && params_.damping > 0) d += "#define DRAPE_DASHPOT 1\n";
     if (xpbd) d += "#define DRAPE_XPBD 1\n";
     if (pass < kConstraint && !kinematic_.empty()) d += "#define DRAPE_KINEMATIC 1\n";
@@ -510,7 +530,7 @@ Result GlesCloth::program(int pass, Program** out) {
     if (it == programs_.end()) {
         // Mass-spring and commit: positions and displacements into two buffers (separate attribs);
         // predict and constraint: one displacement-iterate record [+ lambdas] (interleaved).
-        const bool two_outputs = pass == kMassSpring || pass == kCommit;
+        const bool two_outputs = pass == kMassSpring || pass == kCommit || pass == kTether;
         std::vector<std::string> varyings;
         if (two_outputs) varyings = {"v_x", "v_d"};
         else varyings = {"v_d"};
@@ -522,6 +542,8 @@ Result GlesCloth::program(int pass, Program** out) {
         static const char* const lambda_names[kMaxLambdaVec4] = {"a_lambda0", "a_lambda1", "a_lambda2", "a_lambda3",
                                                                  "a_lambda4", "a_lambda5", "a_lambda6", "a_lambda7"};
         for (uint32_t k = 0; k < kMaxLambdaVec4; ++k) attribs.push_back({aLambda0 + k, lambda_names[k]});
+        attribs.push_back({aTetherAnchor, "a_tether_anchor"});
+        attribs.push_back({aTetherLength, "a_tether_length"});
         Program p;
         if (Result r = link(with_defines(shaders::sim_vert, defines), "sim.vert.glsl", varyings,
                             two_outputs ? GL_SEPARATE_ATTRIBS : GL_INTERLEAVED_ATTRIBS, attribs, &p.id);
@@ -653,6 +675,38 @@ void GlesCloth::run_pass(Program& p, int x, int aux, int out, int out2, bool con
     if (out2 >= 0) refresh_texture(out2);
 }
 
+void GlesCloth::run_tether(Program& p, int x, int d, int out_x, int out_d) {
+    const uint32_t n = topo_.particle_count;
+    constexpr GLsizei kState = GLsizei(sizeof(Particle));
+    glUseProgram(p.id);
+    glUniform1i(p.u[uX], 0);
+    glUniform1i(p.u[uTexWidth], GLint(kTexWidth));
+    glBindVertexArray(gl_.vao);
+    for (int a = 0; a < kMaxAttribs; ++a) glDisableVertexAttribArray(GLuint(a));
+    glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[x]);
+    glEnableVertexAttribArray(aX);
+    glVertexAttribPointer(aX, 4, GL_FLOAT, GL_FALSE, kState, nullptr);
+    glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[d]);
+    glEnableVertexAttribArray(aAux);
+    glVertexAttribPointer(aAux, 4, GL_FLOAT, GL_FALSE, kState, nullptr);
+    glBindBuffer(GL_ARRAY_BUFFER, gl_.tethers);
+    glEnableVertexAttribArray(aTetherAnchor);
+    glVertexAttribIPointer(aTetherAnchor, 1, GL_UNSIGNED_INT, 8, nullptr);
+    glEnableVertexAttribArray(aTetherLength);
+    glVertexAttribPointer(aTetherLength, 1, GL_FLOAT, GL_FALSE, 8, reinterpret_cast<const void*>(size_t(4)));
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, gl_.textures[x]);
+    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[out_x], 0, GLsizeiptr(size_t(n) * kState));
+    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 1, gl_.buffers[out_d], 0, GLsizeiptr(size_t(n) * kState));
+    glBeginTransformFeedback(GL_POINTS);
+    glDrawArrays(GL_POINTS, 0, GLsizei(n));
+    glEndTransformFeedback();
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, 0);
+    refresh_texture(out_x);
+    refresh_texture(out_d);
+}
+
 Result GlesCloth::step(float dt) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (mode_ == Mode::RenderThread) {
@@ -692,8 +746,10 @@ Result GlesCloth::gpu_step(float dt) {
     }
     const drape_model model = drape_model(params_.model);
     const int first = model == DRAPE_MODEL_MASS_SPRING ? kMassSpring : kPredict;
-    Program *p_first = nullptr, *p_constraint = nullptr, *p_commit = nullptr;
+    Program *p_first = nullptr, *p_constraint = nullptr, *p_commit = nullptr, *p_tether = nullptr;
     if (Result r = program(first, &p_first); !r.ok()) return r;
+    if (has_tethers())  // else no tether program and no tether pass (Cloth::step's condition)
+        if (Result r = program(kTether, &p_tether); !r.ok()) return r;
     if (first == kPredict) {
         if (Result r = program(kConstraint, &p_constraint); !r.ok()) return r;
         if (Result r = program(kCommit, &p_commit); !r.ok()) return r;
@@ -758,6 +814,12 @@ Result GlesCloth::gpu_step(float dt) {
             disp = in;
             spare = old_cur;
             spare2 = out;
+        }
+        if (p_tether) {
+            // kernels::tether after the solve: x, d -> spare, spare2 (the CPU works in place).
+            run_tether(*p_tether, cur, disp, spare, spare2);
+            std::swap(cur, spare);
+            std::swap(disp, spare2);
         }
         h_prev_ = h;
         fresh_ = false;

@@ -11,7 +11,10 @@
 //     buffer (GL_PIXEL_UNPACK_BUFFER + glTexSubImage2D): neighbours are read with texelFetch;
 //   RGBA32UI textures: neighbour table (index, rest bits, group), particle info (count, active,
 //     triangles), incident triangles (normals);
-//   kinematic start (copied on the GPU at step start) and pin targets (uploaded when pins move).
+//   kinematic start (copied on the GPU at step start) and pin targets (uploaded when pins move);
+//   tethers: per particle (anchor index, length bits), uploaded when they change; the tether pass
+//     (one more transform-feedback pass per substep, x and d into the spare pair) runs only when
+//     the cloth has tethers (max_stretch > 0 and kinematic particles), as on the CPU.
 // Nothing is read back on the step path; pull() (explicit readback, get_stats, setters that need
 // the current state) maps the two state buffers (x, d) once.
 //
@@ -49,7 +52,7 @@ struct GlObjects {
     GLuint buffers[4] = {};
     GLuint textures[4] = {};
     GLuint nbr_tex = 0, info_tex = 0, tri_tex = 0;
-    GLuint kstart = 0, targets = 0, vertex_to_particle = 0, scratch = 0;
+    GLuint kstart = 0, targets = 0, vertex_to_particle = 0, scratch = 0, tethers = 0;
     GLuint vao = 0, fbo = 0, rbo = 0;
     std::vector<GLuint> programs;
     void* context = nullptr;  ///< EGLContext they were made in
@@ -116,6 +119,9 @@ private:
     /// One transform-feedback pass over the particles: reads buffers x and aux, writes `out` (and
     /// `out2` >= 0 for the two-output passes: out gets v_x, out2 v_d).
     void run_pass(Program& p, int x, int aux, int out, int out2, bool constraint, float along, const float* sub);
+    /// kernels::tether: reads state buffers x and d, writes them to out_x and out_d.
+    void run_tether(Program& p, int x, int d, int out_x, int out_d);
+    bool has_tethers() const { return params_.max_stretch > 0 && !kinematic_.empty(); }
     Result write_output();
     void compute_cpu_stats();
     uint32_t record_vec4() const;
@@ -141,6 +147,7 @@ private:
     GLuint out_buffer_ = 0;
     drape_vertex_layout out_layout_{};
     std::vector<std::pair<int, int>> keeps_;  // (first word, words) of passthrough chunks
+    std::vector<uint32_t> tethers_uploaded_;  // (anchor, length bits) per particle in gl_.tethers
 };
 
 }  // namespace drape::gles
