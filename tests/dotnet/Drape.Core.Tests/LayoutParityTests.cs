@@ -56,7 +56,21 @@ namespace Drape.Tests
             new object[] { "drape_pin", typeof(Pin) },
             new object[] { "drape_cloth_info", typeof(ClothInfo) },
             new object[] { "drape_stats", typeof(Stats) },
+            new object[] { "drape_collider", typeof(Collider) },
+            new object[] { "drape_sleep_desc", typeof(SleepDesc) },
+            new object[] { "drape_view", typeof(View) },
+            new object[] { "drape_touch", typeof(Touch) },
+            new object[] { "drape_owner", typeof(Owner) },
         };
+
+        /// <summary>C# fields whose C name is not Snake(name): a member cannot share its struct's name.</summary>
+        private static readonly Dictionary<string, string> Renamed = new Dictionary<string, string>
+        {
+            ["View.ViewMatrix"] = "view",
+        };
+
+        private static string CField(Type csType, FieldInfo f) =>
+            Renamed.TryGetValue(csType.Name + "." + f.Name, out string c) ? c : Snake(f.Name);
 
         [TestCaseSource(nameof(Twins))]
         public void StructMatchesC(string cName, Type csType)
@@ -68,11 +82,11 @@ namespace Drape.Tests
                                 .OrderBy(k => C[k]).Select(k => k.Substring(cName.Length + 1)).ToArray();
             FieldInfo[] csFields = csType.GetFields(BindingFlags.Instance | BindingFlags.Public | BindingFlags.NonPublic)
                                          .OrderBy(f => (long)Marshal.OffsetOf(csType, f.Name)).ToArray();
-            Assert.That(csFields.Select(f => Snake(f.Name)).ToArray(), Is.EqualTo(cFields), "fields of " + cName);
+            Assert.That(csFields.Select(f => CField(csType, f)).ToArray(), Is.EqualTo(cFields), "fields of " + cName);
 
             foreach (FieldInfo f in csFields)
             {
-                string key = cName + "." + Snake(f.Name);
+                string key = cName + "." + CField(csType, f);
                 Assert.That((long)Marshal.OffsetOf(csType, f.Name), Is.EqualTo(C[key]), "offsetof " + key);
                 Type ft = f.FieldType.IsEnum ? Enum.GetUnderlyingType(f.FieldType) : f.FieldType;
                 Assert.That((long)Marshal.SizeOf(ft), Is.EqualTo(C[key + ":size"]), "sizeof " + key);
@@ -83,6 +97,7 @@ namespace Drape.Tests
         [TestCase(typeof(Backend), "DRAPE_BACKEND_")]
         [TestCase(typeof(Model), "DRAPE_MODEL_")]
         [TestCase(typeof(Group), "DRAPE_GROUP_")]
+        [TestCase(typeof(ColliderShape), "DRAPE_COLLIDER_")]
         public void EnumMatchesC(Type csEnum, string prefix)
         {
             var fromCs = new SortedDictionary<string, long>();
@@ -111,6 +126,26 @@ namespace Drape.Tests
             Assert.That((long)SizeOf.Params, Is.EqualTo(C["drape_params"]));
             Assert.That((long)SizeOf.Stats, Is.EqualTo(C["drape_stats"]));
             Assert.That((long)SizeOf.MeshDesc, Is.EqualTo(C["drape_mesh_desc"]));
+            Assert.That((long)SizeOf.Collider, Is.EqualTo(C["drape_collider"]));
+            Assert.That((long)SizeOf.SleepDesc, Is.EqualTo(C["drape_sleep_desc"]));
+            Assert.That((long)SizeOf.View, Is.EqualTo(C["drape_view"]));
+            Assert.That((long)SizeOf.Touch, Is.EqualTo(C["drape_touch"]));
+            Assert.That((long)SizeOf.Owner, Is.EqualTo(C["drape_owner"]));
+            Assert.That((long)Cloth.MaxColliders, Is.EqualTo(C["DRAPE_MAX_COLLIDERS"]));
+        }
+
+        [Test]
+        public void Float4x4IsColumnMajorLikeUnityMatrix4x4()
+        {
+            // drape.h: element (row r, column c) at [c*4 + r]; Unity's Matrix4x4 fields m00, m10, ...
+            Assert.That((long)Marshal.SizeOf(typeof(Float4x4)), Is.EqualTo(64));
+            for (int r = 0; r < 4; ++r)
+            for (int c = 0; c < 4; ++c)
+                Assert.That((long)Marshal.OffsetOf(typeof(Float4x4), "M" + r + c), Is.EqualTo(4L * (c * 4 + r)));
+            var m = new Float4x4();
+            m[1, 3] = 7f;
+            Assert.That(m.M13, Is.EqualTo(7f));
+            Assert.That(C["drape_view.world:size"], Is.EqualTo(64));
         }
 
         [Test]

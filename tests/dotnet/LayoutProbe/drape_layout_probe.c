@@ -91,6 +91,45 @@ static const probe_entry k_entries[] = {
     FIELD(drape_stats, unstable_steps),
     FIELD(drape_stats, sleeping),
 
+    STRUCT(drape_collider),
+    FIELD(drape_collider, struct_size),
+    FIELD(drape_collider, shape),
+    FIELD(drape_collider, id),
+    FIELD(drape_collider, position),
+    FIELD(drape_collider, rotation),
+    FIELD(drape_collider, size),
+    FIELD(drape_collider, margin),
+    FIELD(drape_collider, friction),
+
+    STRUCT(drape_sleep_desc),
+    FIELD(drape_sleep_desc, struct_size),
+    FIELD(drape_sleep_desc, threshold),
+    FIELD(drape_sleep_desc, time),
+
+    STRUCT(drape_view),
+    FIELD(drape_view, struct_size),
+    FIELD(drape_view, world),
+    FIELD(drape_view, view),
+    FIELD(drape_view, projection),
+    FIELD(drape_view, viewport),
+
+    STRUCT(drape_touch),
+    FIELD(drape_touch, struct_size),
+    FIELD(drape_touch, position),
+    FIELD(drape_touch, motion),
+    FIELD(drape_touch, amplitude),
+    FIELD(drape_touch, sigma),
+
+    STRUCT(drape_owner),
+    FIELD(drape_owner, struct_size),
+    FIELD(drape_owner, position),
+    FIELD(drape_owner, rotation),
+    FIELD(drape_owner, linear_inertia),
+    FIELD(drape_owner, angular_inertia),
+    FIELD(drape_owner, teleport_distance),
+
+    {"DRAPE_MAX_COLLIDERS", DRAPE_MAX_COLLIDERS},
+
     ENUM(DRAPE_OK),
     ENUM(DRAPE_ERROR_NULL_POINTER),
     ENUM(DRAPE_ERROR_INVALID_HANDLE),
@@ -116,6 +155,10 @@ static const probe_entry k_entries[] = {
     ENUM(DRAPE_GROUP_SHEAR),
     ENUM(DRAPE_GROUP_BEND),
     ENUM(DRAPE_GROUP_COUNT),
+    ENUM(DRAPE_COLLIDER_SPHERE),
+    ENUM(DRAPE_COLLIDER_CAPSULE),
+    ENUM(DRAPE_COLLIDER_BOX),
+    ENUM(DRAPE_COLLIDER_PLANE),
 };
 
 __attribute__((visibility("default"))) int32_t drape_probe_count(void) {

@@ -220,6 +220,158 @@ namespace Drape.Core
             }
         }
 
+        /// <summary>Most colliders one cloth takes (DRAPE_MAX_COLLIDERS).</summary>
+        public const int MaxColliders = 64;
+
+        /// <summary>Returned by <see cref="Grab"/> when no vertex was within the pick radius (UINT32_MAX).</summary>
+        public const uint NoVertex = uint.MaxValue;
+
+        /// <summary>Replaces the cloth's colliders (call once per frame with the current transforms;
+        /// empty removes them all). StructSize of each element is set here. A collider keeps its Id
+        /// from call to call so that its motion is swept across the next step. Allocates nothing.</summary>
+        public unsafe void SetColliders(Span<Collider> colliders)
+        {
+            uint size = SizeOf.Collider;
+            for (int k = 0; k < colliders.Length; ++k) colliders[k].StructSize = size;
+            fixed (Collider* p = colliders)
+            {
+                lock (_sync)
+                {
+                    Status s = NativeMethods.drape_cloth_set_colliders(_handle, p, (uint)colliders.Length);
+                    if (s != Status.Ok) NativeMethods.Check(s, "drape_cloth_set_colliders");
+                }
+            }
+        }
+
+        /// <summary>Lets the cloth fall asleep when its fastest particle stays below
+        /// <paramref name="threshold"/> m/s for <paramref name="time"/> s (threshold 0: never). An
+        /// asleep cloth's steps do no work; any change (colliders, pins, drag, owner, parameters,
+        /// positions) wakes it. See <see cref="Stats.Sleeping"/>.</summary>
+        public void SetSleep(float threshold, float time)
+        {
+            var desc = new SleepDesc { StructSize = SizeOf.SleepDesc, Threshold = threshold, Time = time };
+            lock (_sync)
+            {
+                Status s = NativeMethods.drape_cloth_set_sleep(_handle, ref desc);
+                if (s != Status.Ok) NativeMethods.Check(s, "drape_cloth_set_sleep");
+            }
+        }
+
+        /// <summary>Wakes the cloth (it may fall asleep again after the sleep time of stillness).</summary>
+        public void Wake()
+        {
+            lock (_sync)
+            {
+                Status s = NativeMethods.drape_cloth_wake(_handle);
+                if (s != Status.Ok) NativeMethods.Check(s, "drape_cloth_wake");
+            }
+        }
+
+        /// <summary>Drags the cloth with up to 16 touches seen through <paramref name="view"/> (paper
+        /// eq. 9); the displacement is spread over the next step. Calls before a step add up.
+        /// StructSize of the view and of each touch is set here. Allocates nothing.</summary>
+        public unsafe void Drag(in View view, Span<Touch> touches)
+        {
+            View v = view;
+            v.StructSize = SizeOf.View;
+            uint size = SizeOf.Touch;
+            for (int k = 0; k < touches.Length; ++k) touches[k].StructSize = size;
+            fixed (Touch* p = touches)
+            {
+                lock (_sync)
+                {
+                    Status s = NativeMethods.drape_cloth_drag(_handle, ref v, p, (uint)touches.Length);
+                    if (s != Status.Ok) NativeMethods.Check(s, "drape_cloth_drag");
+                }
+            }
+        }
+
+        /// <summary>Drags the cloth with one touch: the finger was at <paramref name="position"/> (px,
+        /// origin bottom-left of the viewport) and moved by <paramref name="motion"/> px.</summary>
+        public unsafe void Drag(in View view, Float2 position, Float2 motion, float amplitude = 200f, float sigma = 300f)
+        {
+            Touch* touch = stackalloc Touch[1];
+            touch[0] = new Touch { Position = position, Motion = motion, Amplitude = amplitude, Sigma = sigma };
+            Drag(view, new Span<Touch>(touch, 1));
+        }
+
+        /// <summary>Pick-and-hold: grabs the free vertex nearest on screen to <paramref name="position"/>
+        /// (px) within <paramref name="pickRadius"/> px and holds it at its depth under the finger.
+        /// Returns the vertex, or <see cref="NoVertex"/> if none was within the radius. At most 16
+        /// grabs at once; grabbing with a live <paramref name="touchId"/> releases the old one first.</summary>
+        public uint Grab(in View view, uint touchId, Float2 position, float pickRadius)
+        {
+            View v = view;
+            v.StructSize = SizeOf.View;
+            lock (_sync)
+            {
+                Status s = NativeMethods.drape_cloth_grab(_handle, ref v, touchId, ref position, pickRadius, out uint vertex);
+                if (s != Status.Ok) NativeMethods.Check(s, "drape_cloth_grab");
+                return vertex;
+            }
+        }
+
+        /// <summary>Moves the vertex held by <paramref name="touchId"/> under the finger at
+        /// <paramref name="position"/> (px); the move is spread over the next step.</summary>
+        public void GrabMove(in View view, uint touchId, Float2 position)
+        {
+            View v = view;
+            v.StructSize = SizeOf.View;
+            lock (_sync)
+            {
+                Status s = NativeMethods.drape_cloth_grab_move(_handle, ref v, touchId, ref position);
+                if (s != Status.Ok) NativeMethods.Check(s, "drape_cloth_grab_move");
+            }
+        }
+
+        /// <summary>Releases a grab (unknown ids are fine): the vertex keeps its velocity.</summary>
+        public void GrabRelease(uint touchId)
+        {
+            lock (_sync)
+            {
+                Status s = NativeMethods.drape_cloth_grab_release(_handle, touchId);
+                if (s != Status.Ok) NativeMethods.Check(s, "drape_cloth_grab_release");
+            }
+        }
+
+        /// <summary>Sets this frame's owner transform (in simulation space). The first call only
+        /// records it; later calls move pins (rigidly) and free vertices (by 1 - inertia) by the
+        /// change. StructSize is set here. Allocates nothing.</summary>
+        public void SetOwner(Owner owner)
+        {
+            owner.StructSize = SizeOf.Owner;
+            lock (_sync)
+            {
+                Status s = NativeMethods.drape_cloth_set_owner(_handle, ref owner);
+                if (s != Status.Ok) NativeMethods.Check(s, "drape_cloth_set_owner");
+            }
+        }
+
+        /// <summary>GLES cloths: after every step the GPU writes positions and/or normals of every vertex
+        /// into GL buffer <paramref name="glBuffer"/> (Unity: the name Mesh.GetNativeVertexBufferPtr
+        /// returns on OpenGL ES), laid out by <paramref name="layout"/>; 0 stops writing. In Unity the
+        /// GL work runs at the render event (<see cref="World.GetUnityRenderEvent"/>).</summary>
+        public void SetOutputBuffer(uint glBuffer, VertexLayout layout)
+        {
+            layout.StructSize = SizeOf.VertexLayout;
+            lock (_sync)
+            {
+                Status s = NativeMethods.drape_cloth_set_output_buffer(_handle, glBuffer, ref layout);
+                if (s != Status.Ok) NativeMethods.Check(s, "drape_cloth_set_output_buffer");
+            }
+        }
+
+        /// <summary>GLES cloths: copies the GPU state to the CPU copy (Unity: at the next render event).
+        /// No-op for CPU cloths.</summary>
+        public void Readback()
+        {
+            lock (_sync)
+            {
+                Status s = NativeMethods.drape_cloth_readback(_handle);
+                if (s != Status.Ok) NativeMethods.Check(s, "drape_cloth_readback");
+            }
+        }
+
         public void Dispose()
         {
             _handle.Dispose();

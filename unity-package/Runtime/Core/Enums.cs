@@ -52,4 +52,17 @@ namespace Drape.Core
         Bend = 2,
         Count = 3,
     }
+
+    /// <summary>C twin: drape_collider_shape.</summary>
+    public enum ColliderShape : uint
+    {
+        /// <summary>Size.X = radius (&gt; 0).</summary>
+        Sphere = 0,
+        /// <summary>Size.X = radius (&gt; 0), Size.Y = half length (&gt;= 0) of the segment along local y.</summary>
+        Capsule = 1,
+        /// <summary>Size = half extents (each &gt; 0), oriented by the rotation.</summary>
+        Box = 2,
+        /// <summary>Infinite; local +y points to the free side; Size ignored.</summary>
+        Plane = 3,
+    }
 }

@@ -84,6 +84,51 @@ namespace Drape.Core
         [DllImport(Library, CallingConvention = Cdecl)]
         internal static extern Status drape_cloth_get_stats(ClothHandle cloth, ref Stats stats);
 
+        // ---- GLES backend and Unity render event ----
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_set_output_buffer(ClothHandle cloth, uint glBuffer, ref VertexLayout layout);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_readback(ClothHandle cloth);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_unity_render_event(out IntPtr callback, out int eventId);
+
+        // ---- Colliders, sleeping, touch drag, owner transform ----
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern unsafe Status drape_cloth_set_colliders(ClothHandle cloth, Collider* colliders, uint count);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_set_sleep(ClothHandle cloth, ref SleepDesc desc);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_wake(ClothHandle cloth);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_touch_default(out Touch touch);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern unsafe Status drape_cloth_drag(ClothHandle cloth, ref View view, Touch* touches, uint count);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_grab(ClothHandle cloth, ref View view, uint touchId, ref Float2 position,
+                                                       float pickRadius, out uint vertex);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_grab_move(ClothHandle cloth, ref View view, uint touchId,
+                                                            ref Float2 position);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_grab_release(ClothHandle cloth, uint touchId);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_owner_default(out Owner owner);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_set_owner(ClothHandle cloth, ref Owner owner);
+
         /// <summary>The native message for the last failure on this thread ("" if none).</summary>
         internal static string LastError()
         {

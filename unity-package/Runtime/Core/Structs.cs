@@ -29,6 +29,73 @@ namespace Drape.Core
         public override string ToString() => "(" + X + ", " + Y + ", " + Z + ")";
     }
 
+    /// <summary>Two floats (C: float[2]): screen pixels or a viewport size.</summary>
+    [Serializable]
+    [StructLayout(LayoutKind.Sequential)]
+    public struct Float2
+    {
+        public float X;
+        public float Y;
+
+        public Float2(float x, float y)
+        {
+            X = x;
+            Y = y;
+        }
+    }
+
+    /// <summary>Four floats (C: float[4]): a rotation quaternion x, y, z, w.</summary>
+    [Serializable]
+    [StructLayout(LayoutKind.Sequential)]
+    public struct Float4
+    {
+        public float X;
+        public float Y;
+        public float Z;
+        public float W;
+
+        public Float4(float x, float y, float z, float w)
+        {
+            X = x;
+            Y = y;
+            Z = z;
+            W = w;
+        }
+
+        /// <summary>The identity rotation (0, 0, 0, 1).</summary>
+        public static Float4 IdentityRotation => new Float4(0f, 0f, 0f, 1f);
+    }
+
+    /// <summary>A 4x4 matrix (C: float[16]) in column-major memory order, as drape.h, OpenGL and
+    /// Unity's Matrix4x4 store it: field Mrc is row r, column c, at index c*4 + r. Unity's
+    /// Matrix4x4 has the same fields (m00, m10, m20, m30, m01, ...) in the same order.</summary>
+    [Serializable]
+    [StructLayout(LayoutKind.Sequential)]
+    public struct Float4x4
+    {
+        public float M00, M10, M20, M30;
+        public float M01, M11, M21, M31;
+        public float M02, M12, M22, M32;
+        public float M03, M13, M23, M33;
+
+        public static Float4x4 Identity => new Float4x4 { M00 = 1f, M11 = 1f, M22 = 1f, M33 = 1f };
+
+        /// <summary>Element at row <paramref name="row"/>, column <paramref name="column"/> (0..3).</summary>
+        public unsafe float this[int row, int column]
+        {
+            get
+            {
+                if ((uint)row > 3 || (uint)column > 3) throw new ArgumentOutOfRangeException(nameof(row));
+                fixed (float* m = &M00) return m[column * 4 + row];
+            }
+            set
+            {
+                if ((uint)row > 3 || (uint)column > 3) throw new ArgumentOutOfRangeException(nameof(row));
+                fixed (float* m = &M00) m[column * 4 + row] = value;
+            }
+        }
+    }
+
     /// <summary>One float per <see cref="Group"/> (C: float[DRAPE_GROUP_COUNT]).</summary>
     [Serializable]
     [StructLayout(LayoutKind.Sequential)]
@@ -222,6 +289,121 @@ namespace Drape.Core
         public uint Sleeping;
     }
 
+    /// <summary>C twin: drape_collider. One element of the array given to
+    /// <see cref="Cloth.SetColliders"/> (which sets StructSize).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct Collider
+    {
+        public uint StructSize;
+        public ColliderShape Shape;
+        /// <summary>The host's stable id, unique in the array: a collider moves from the transform it
+        /// had under the same id in the previous call, interpolated across the next step's substeps
+        /// (no tunnelling); a new id starts at rest.</summary>
+        public uint Id;
+        /// <summary>m, simulation space. Plane: a point on it.</summary>
+        public Float3 Position;
+        /// <summary>Unit quaternion x, y, z, w (|q| within 1e-3 of 1). Capsule: its segment runs along
+        /// the rotated local y; plane: the rotated +y points to the free side.</summary>
+        public Float4 Rotation;
+        /// <summary>m. Sphere: X = radius. Capsule: X = radius, Y = half length of the segment
+        /// between the cap centres (Unity: max(0, height/2 - radius)). Box: half extents. Plane: unused.</summary>
+        public Float3 Size;
+        /// <summary>m, in [0, 10]: distance kept between cloth and surface. Typical 0.005.</summary>
+        public float Margin;
+        /// <summary>Coulomb coefficient in [0, 10]; 0 = frictionless. Typical 0.3-0.8.</summary>
+        public float Friction;
+
+        public static Collider Sphere(uint id, Float3 center, float radius, float margin = 0.005f, float friction = 0.5f) =>
+            new Collider { StructSize = SizeOf.Collider, Shape = ColliderShape.Sphere, Id = id, Position = center,
+                           Rotation = Float4.IdentityRotation, Size = new Float3(radius, 0f, 0f), Margin = margin,
+                           Friction = friction };
+
+        public static Collider Plane(uint id, Float3 point, Float4 rotation, float margin = 0.005f, float friction = 0.5f) =>
+            new Collider { StructSize = SizeOf.Collider, Shape = ColliderShape.Plane, Id = id, Position = point,
+                           Rotation = rotation, Margin = margin, Friction = friction };
+    }
+
+    /// <summary>C twin: drape_sleep_desc. A cloth whose fastest particle stays below Threshold for
+    /// Time seconds of steps falls asleep (steps do no work) until something changes.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct SleepDesc
+    {
+        public uint StructSize;
+        /// <summary>m/s, in [0, 100]; 0 = never sleep. Typical 0.01.</summary>
+        public float Threshold;
+        /// <summary>s, in [0, 100]: how long motion must stay below Threshold. Typical 1.</summary>
+        public float Time;
+    }
+
+    /// <summary>C twin: drape_view. How the cloth is seen, for touch drag and grabs. Matrices are
+    /// column-major (Unity's Matrix4x4 memory order); OpenGL clip conventions (Unity: pass
+    /// Camera.projectionMatrix, not GL.GetGPUProjectionMatrix).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct View
+    {
+        public uint StructSize;
+        /// <summary>Simulation space -&gt; world (identity if the cloth simulates in world space).</summary>
+        public Float4x4 World;
+        /// <summary>World -&gt; camera (Unity: Camera.worldToCameraMatrix). C: `view` (a C# member
+        /// cannot share its struct's name).</summary>
+        public Float4x4 ViewMatrix;
+        /// <summary>Camera -&gt; clip (Unity: Camera.projectionMatrix).</summary>
+        public Float4x4 Projection;
+        /// <summary>Pixels, width and height (&gt; 0); screen origin bottom-left.</summary>
+        public Float2 Viewport;
+    }
+
+    /// <summary>C twin: drape_touch. One finger of a touch drag (paper eq. 9 with the exponent's sign
+    /// restored): c = min(1, A exp(-r^2 / (2 sigma))), r = the vertex's screen distance (px) from
+    /// Position; the vertex's screen position moves by c * Motion. <see cref="Touch.Default"/> fills
+    /// the library defaults.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct Touch
+    {
+        public uint StructSize;
+        /// <summary>px, where the finger was at the previous call (the touch point).</summary>
+        public Float2 Position;
+        /// <summary>px, finger motion since then.</summary>
+        public Float2 Motion;
+        /// <summary>A, &gt; 0. Default 200.</summary>
+        public float Amplitude;
+        /// <summary>px^2, &gt; 0. Default 300.</summary>
+        public float Sigma;
+
+        /// <summary>The library defaults (Position, Motion 0; A 200; sigma 300 px^2).</summary>
+        public static Touch Default()
+        {
+            NativeMethods.Check(NativeMethods.drape_touch_default(out Touch t), "drape_touch_default");
+            return t;
+        }
+    }
+
+    /// <summary>C twin: drape_owner. The transform of the object the cloth hangs on, in simulation
+    /// space: pins move rigidly with it; free vertices are carried along by (1 - inertia) of its
+    /// motion. <see cref="Owner.Default"/> fills the library defaults.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct Owner
+    {
+        public uint StructSize;
+        /// <summary>m.</summary>
+        public Float3 Position;
+        /// <summary>Unit quaternion x, y, z, w.</summary>
+        public Float4 Rotation;
+        /// <summary>[0, 1], default 1: 0 carries the cloth fully (local space), 1 lets it lag (world space).</summary>
+        public float LinearInertia;
+        /// <summary>[0, 1], default 1.</summary>
+        public float AngularInertia;
+        /// <summary>m, &gt; 0, default 1: a jump further than this moves the cloth rigidly (velocities zeroed).</summary>
+        public float TeleportDistance;
+
+        /// <summary>The library defaults (identity transform, inertia 1, teleport distance 1 m).</summary>
+        public static Owner Default()
+        {
+            NativeMethods.Check(NativeMethods.drape_owner_default(out Owner o), "drape_owner_default");
+            return o;
+        }
+    }
+
     /// <summary>struct_size values (sizeof the C twin on this platform).</summary>
     public static class SizeOf
     {
@@ -234,5 +416,10 @@ namespace Drape.Core
         public static readonly uint Pin = (uint)Marshal.SizeOf(typeof(Pin));
         public static readonly uint ClothInfo = (uint)Marshal.SizeOf(typeof(ClothInfo));
         public static readonly uint Stats = (uint)Marshal.SizeOf(typeof(Stats));
+        public static readonly uint Collider = (uint)Marshal.SizeOf(typeof(Collider));
+        public static readonly uint SleepDesc = (uint)Marshal.SizeOf(typeof(SleepDesc));
+        public static readonly uint View = (uint)Marshal.SizeOf(typeof(View));
+        public static readonly uint Touch = (uint)Marshal.SizeOf(typeof(Touch));
+        public static readonly uint Owner = (uint)Marshal.SizeOf(typeof(Owner));
     }
 }

@@ -52,6 +52,15 @@ namespace Drape.Core
             return p;
         }
 
+        /// <summary>The native render-event callback for Unity's GL.IssuePluginEvent /
+        /// CommandBuffer.IssuePluginEvent, and the event id to pass with it. The event runs every GLES
+        /// cloth's recorded GL work on Unity's render thread. Fetch once and keep.</summary>
+        public static void GetUnityRenderEvent(out IntPtr callback, out int eventId)
+        {
+            NativeMethods.Check(NativeMethods.drape_unity_render_event(out callback, out eventId),
+                                "drape_unity_render_event");
+        }
+
         /// <summary>Steps every cloth of the world by dt seconds (0 &lt; dt &lt;= 1). Throws on the
         /// first failure; the other cloths were still stepped. Allocates nothing unless it throws.</summary>
         public void Step(float dt)

@@ -7,16 +7,22 @@ namespace Drape.Tests
     /// <summary>The per-frame path (set params, pin, step, read, stats) allocates no managed memory.</summary>
     public class AllocationTests
     {
-        [Test]
-        public unsafe void SteadyStateFrameAllocatesNothing()
+        /// <summary>The counter must work on this runtime, or the tests below would pass vacuously.</summary>
+        private static void RequireAllocationCounter()
         {
-            // The counter must work on this runtime, or the test below would pass vacuously.
             long probeBefore = GC.GetAllocatedBytesForCurrentThread();
             object probe = new byte[1024];
             long probeAfter = GC.GetAllocatedBytesForCurrentThread();
             GC.KeepAlive(probe);
             if (probeAfter - probeBefore < 1024)
                 Assert.Ignore("GC.GetAllocatedBytesForCurrentThread does not count allocations on this runtime");
+        }
+
+        [Test]
+        public unsafe void SteadyStateFrameAllocatesNothing()
+        {
+            RequireAllocationCounter();
+            long probeBefore = 0;
 
             using (var world = new World(1))
             using (Cloth cloth = TestScenes.HorizontalGrid(world, 16, 16))
@@ -44,6 +50,54 @@ namespace Drape.Tests
                     if (stats.NonFinite != 0) Assert.Fail("non-finite state at frame " + frame);
                 }
                 long allocated = GC.GetAllocatedBytesForCurrentThread() - probeBefore;
+                Assert.That(allocated, Is.EqualTo(0), "bytes allocated over 100 steady-state frames");
+            }
+        }
+    
+        [Test]
+        public void FrameWithCollidersDragOwnerAndSleepAllocatesNothing()
+        {
+            // What DrapeCloth and DrapeTouchDrag do each frame: push every collider transform in one
+            // call from a preallocated array, drag, move the owner, step the world, read the stats.
+            RequireAllocationCounter();
+            using (var world = new World(1))
+            using (Cloth cloth = TestScenes.HorizontalGrid(world, 16, 16))
+            {
+                var colliders = new Collider[Cloth.MaxColliders];
+                View view = TestScenes.PerspectiveView();
+                var touches = new Touch[1];
+                Owner owner = Owner.Default();
+                var xyz = new float[cloth.VertexCount * 3];
+                cloth.SetSleep(0.01f, 1f);
+                long before = 0;
+                for (int frame = 0; frame < 200; ++frame)
+                {
+                    if (frame == 100) before = GC.GetAllocatedBytesForCurrentThread();
+                    float t = frame * (1f / 60f);
+                    colliders[0] = Collider.Sphere(1, new Float3(0.5f, 0.5f + 0.1f * t, -0.5f), 0.3f);
+                    colliders[1] = Collider.Plane(2, new Float3(0f, -0.5f, 0f), Float4.IdentityRotation);
+                    colliders[2] = new Collider
+                    {
+                        Shape = ColliderShape.Capsule, Id = 3, Position = new Float3(2f, 0f, 0f),
+                        Rotation = Float4.IdentityRotation, Size = new Float3(0.1f, 0.3f, 0f), Margin = 0.005f,
+                    };
+                    colliders[3] = new Collider
+                    {
+                        Shape = ColliderShape.Box, Id = 4, Position = new Float3(-2f, 0f, 0f),
+                        Rotation = Float4.IdentityRotation, Size = new Float3(0.1f, 0.2f, 0.3f), Margin = 0.005f,
+                    };
+                    cloth.SetColliders(new Span<Collider>(colliders, 0, 4));
+                    touches[0] = new Touch { Position = new Float2(200f, 150f), Motion = new Float2(1f, 0f),
+                                             Amplitude = 200f, Sigma = 300f };
+                    cloth.Drag(view, touches);
+                    owner.Position = new Float3(0.001f * frame, 0f, 0f);
+                    cloth.SetOwner(owner);
+                    world.Step(1f / 60f);
+                    Stats stats = cloth.GetStats();
+                    if (stats.NonFinite != 0) Assert.Fail("non-finite state at frame " + frame);
+                    cloth.ReadPositions(xyz);
+                }
+                long allocated = GC.GetAllocatedBytesForCurrentThread() - before;
                 Assert.That(allocated, Is.EqualTo(0), "bytes allocated over 100 steady-state frames");
             }
         }

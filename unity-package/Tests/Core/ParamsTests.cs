@@ -9,7 +9,7 @@ namespace Drape.Tests
         public void DefaultsAreTheDocumentedOnes()
         {
             // drape.h: XPBD, stiffness 2000/1000/200, damping 0.05, gravity (0,-9.81,0), wind 0,
-            // air drag 0.1, 4 iterations.
+            // air drag 0.1, substeps 0 (automatic: 16 small steps), 1 iteration, tethers at 10% stretch.
             Params p = World.DefaultParams();
             Assert.That(p.StructSize, Is.EqualTo(SizeOf.Params));
             Assert.That(p.Model, Is.EqualTo(Model.Xpbd));
@@ -20,7 +20,9 @@ namespace Drape.Tests
             Assert.That(p.Gravity, Is.EqualTo(new Float3(0f, -9.81f, 0f)));
             Assert.That(p.Wind, Is.EqualTo(new Float3(0f, 0f, 0f)));
             Assert.That(p.AirDrag, Is.EqualTo(0.1f));
-            Assert.That(p.Iterations, Is.EqualTo(4u));
+            Assert.That(p.Substeps, Is.EqualTo(0u));
+            Assert.That(p.Iterations, Is.EqualTo(1u));
+            Assert.That(p.MaxStretch, Is.EqualTo(0.1f).Within(1e-7f));
         }
 
         [Test]
@@ -54,6 +56,7 @@ namespace Drape.Tests
                 p.AirDrag = 0.3f;
                 p.Substeps = 3;
                 p.Iterations = 7;
+                p.MaxStretch = 0.25f;
                 p.StructSize = 0; // the wrapper sets it
                 cloth.SetParams(p);
 
@@ -68,6 +71,7 @@ namespace Drape.Tests
                 Assert.That(back.AirDrag, Is.EqualTo(0.3f));
                 Assert.That(back.Substeps, Is.EqualTo(3u));
                 Assert.That(back.Iterations, Is.EqualTo(7u));
+                Assert.That(back.MaxStretch, Is.EqualTo(0.25f));
             }
         }
 
