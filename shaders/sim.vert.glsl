@@ -22,6 +22,11 @@
 //                            Two outputs like MASS_SPRING: v_x, v_d. Own x and d as attributes,
 //                            the anchor's position from u_x; anchor index and length per particle
 //                            as attributes (uploaded when the tethers change)
+//   DRAPE_PASS_INTERACT      Cloth::interaction_substep after the solve (and tethers): touch drag
+//                            (DRAPE_DRAG: a_drag = this substep's share of the drag offset, first
+//                            substep only) then kernels::collide against DRAPE_SHAPES colliders
+//                            (0: no collision code). Two outputs like MASS_SPRING: v_x, v_d
+//   DRAPE_SHAPES             capacity of u_shapes (colliders, 5 vec4 each: kernels::CollideShape)
 //   DRAPE_DASHPOT            predict with PBD's explicit dashpots
 //   DRAPE_XPBD               constraint pass is XPBD (lambdas ride in the iterate record), else PBD
 //   DRAPE_KINEMATIC          some particles have w = 0: place them on their pin path
@@ -37,7 +42,7 @@
 // floatBitsToUint(rest), group, 0); the particle table texel i = (neighbour count, active springs,
 // 0, 0). All textures are u_tex_width texels wide (row-major).
 #if !defined(DRAPE_PASS_MASS_SPRING) && !defined(DRAPE_PASS_PREDICT) && !defined(DRAPE_PASS_CONSTRAINT) && \
-    !defined(DRAPE_PASS_TETHER)
+    !defined(DRAPE_PASS_TETHER) && !defined(DRAPE_PASS_INTERACT)
 #define DRAPE_PASS_MASS_SPRING 1
 #endif
 #ifndef DRAPE_SLOTS
@@ -48,6 +53,9 @@
 #endif
 #ifndef DRAPE_RECORD
 #define DRAPE_RECORD 1
+#endif
+#ifndef DRAPE_SHAPES
+#define DRAPE_SHAPES 0
 #endif
 
 precision highp float;
@@ -76,6 +84,15 @@ uniform float u_along;              // kinematic path fraction at the end of thi
 
 in vec4 a_x;                        // own record: position x (MS, PREDICT) / displacement iterate
 in vec4 a_aux;                      // own: displacement d (MS, PREDICT, TETHER) or substep start x (CONSTRAINT)
+#ifdef DRAPE_DRAG
+in vec3 a_drag;                     // drag offset * (1 / substeps), zero for untouched particles
+#endif
+#if DRAPE_SHAPES > 0
+// kernels::CollideShape per collider: (pos0, margin), (pos1, friction), rot0, rot1 (x, y, z, w),
+// (size, shape), interpolated for this substep on the CPU exactly as Cloth::interaction_substep.
+uniform vec4 u_shapes[DRAPE_SHAPES * 5];
+uniform int u_shape_count;
+#endif
 #ifdef DRAPE_PASS_TETHER
 in uint a_tether_anchor;            // Cloth::tether_anchor_
 in float a_tether_length;           // Cloth::tether_length_ (< 0: no tether)
@@ -85,7 +102,8 @@ in vec3 a_kstart;                   // position at the start of the step
 in vec3 a_ktarget;                  // pin target at the end of the step
 #endif
 
-#if defined(DRAPE_PASS_MASS_SPRING) || defined(DRAPE_COMMIT) || defined(DRAPE_PASS_TETHER)
+#if defined(DRAPE_PASS_MASS_SPRING) || defined(DRAPE_COMMIT) || defined(DRAPE_PASS_TETHER) || \
+    defined(DRAPE_PASS_INTERACT)
 out vec4 v_x;                       // new position record
 #endif
 out vec4 v_d;                       // new displacement (state or iterate) record
@@ -176,6 +194,53 @@ float jacobi_scale(float wi, float wj, uint ci, uint cj, float diag, float gamma
 }
 #endif
 
+#if DRAPE_SHAPES > 0
+// glm's quat * vec3 (glm/detail/type_quat.inl), q = (x, y, z, w)
+vec3 rotate(vec4 q, vec3 v) {
+    vec3 uv = cross(q.xyz, v);
+    vec3 uuv = cross(q.xyz, uv);
+    return v + ((uv * q.w) + uuv) * 2.0;
+}
+vec4 conjugate(vec4 q) { return vec4(-q.xyz, q.w); }
+
+// kernels::shape_distance (collide.h): signed distance and outward normal in the local frame.
+float shape_distance(int shape, vec3 size, vec3 p, out vec3 n) {
+    if (shape == 0) {  // sphere
+        float len = sqrt(dot(p, p));
+        n = len > 0.0 ? p / len : vec3(0.0, 1.0, 0.0);
+        return len - size.x;
+    }
+    if (shape == 1) {  // capsule
+        vec3 q = vec3(p.x, p.y - max(-size.y, min(size.y, p.y)), p.z);
+        float len = sqrt(dot(q, q));
+        n = len > 0.0 ? q / len : vec3(1.0, 0.0, 0.0);
+        return len - size.x;
+    }
+    if (shape == 2) {  // box
+        vec3 q = abs(p) - size;
+        vec3 s = vec3(p.x < 0.0 ? -1.0 : 1.0, p.y < 0.0 ? -1.0 : 1.0, p.z < 0.0 ? -1.0 : 1.0);
+        if (q.x > 0.0 || q.y > 0.0 || q.z > 0.0) {
+            vec3 o = max(q, vec3(0.0));
+            float len = sqrt(dot(o, o));
+            n = s * o / len;
+            return len;
+        }
+        if (q.x >= q.y && q.x >= q.z) {
+            n = vec3(s.x, 0.0, 0.0);
+            return q.x;
+        }
+        if (q.y >= q.z) {
+            n = vec3(0.0, s.y, 0.0);
+            return q.y;
+        }
+        n = vec3(0.0, 0.0, s.z);
+        return q.z;
+    }
+    n = vec3(0.0, 1.0, 0.0);  // plane
+    return p.y;
+}
+#endif
+
 #ifdef DRAPE_KINEMATIC
 // Kinematic particles move along a straight line from their start to their target (Cloth::step
 // kinematic_at).
@@ -186,6 +251,91 @@ void main() {
     int i = gl_VertexID;
     vec3 xi = a_x.xyz;
     float wi = a_x.w;
+#ifdef DRAPE_PASS_INTERACT
+    v_x = a_x;
+    v_d = a_aux;
+    if (wi == 0.0) return;  // kinematic: goes where its pin says (no drag, no collision)
+    vec3 dd = a_aux.xyz;
+#ifdef DRAPE_DRAG
+    // Cloth::interaction_substep, first substep: x and d move by the drag share
+    xi += a_drag;
+    dd += a_drag;
+#endif
+#if DRAPE_SHAPES > 0
+    // kernels::collide
+    vec3 x_in = xi;
+    vec3 si = x_in - dd;
+    for (int k = 0; k < u_shape_count; ++k) {
+        vec4 c0 = u_shapes[5 * k], c1 = u_shapes[5 * k + 1], rot0 = u_shapes[5 * k + 2], rot1 = u_shapes[5 * k + 3];
+        vec4 c4 = u_shapes[5 * k + 4];
+        vec3 size = c4.xyz;
+        int shape = int(c4.w);
+        float margin = c0.w;
+        vec3 p1 = rotate(conjugate(rot1), xi - c1.xyz);
+        vec3 n1;
+        float d1 = shape_distance(shape, size, p1, n1) - margin;
+        vec3 p0 = rotate(conjugate(rot0), si - c0.xyz);
+        vec3 seg = p1 - p0;
+        float len = sqrt(dot(seg, seg));
+        if (d1 >= 0.0 && len <= d1) continue;  // cannot have touched the shape this substep
+        vec3 n0;
+        float d0 = shape_distance(shape, size, p0, n0) - margin;
+        vec3 q = p1;
+        vec3 n = n1;
+        bool contact = false;
+        bool entered = false;
+        vec3 h = vec3(0.0);
+        if (d0 > 0.0) {
+            if (len > d0) {
+                float t = 0.0, d = d0;
+                vec3 dir = seg / len;
+                vec3 nh = n0;
+                for (int it = 0; it < 16 && d > 1e-6 && t < len; ++it) {  // kSweepIterations
+                    t += d;
+                    if (t >= len) break;
+                    d = shape_distance(shape, size, p0 + dir * t, nh) - margin;
+                }
+                if (t < len) {
+                    entered = true;
+                    h = p0 + dir * t;
+                    n = nh;
+                }
+            }
+        } else {
+            h = p0 - d0 * n0;
+            entered = dot(p1 - h, n0) < 0.0;
+            if (entered) n = n0;
+        }
+        if (entered) {
+            q = p1 + max(0.0, -dot(p1 - h, n)) * n;
+            vec3 nq;
+            float dq = shape_distance(shape, size, q, nq) - margin;
+            if (dq < 0.0) q = dot(nq, n) > 0.0 ? q - dq * nq : h;
+            contact = true;
+        } else if (d1 < 0.0) {
+            q = p1 - d1 * n1;
+            contact = true;
+        }
+        if (!contact) continue;
+        float friction = c1.w;
+        if (friction > 0.0) {
+            vec3 pen = q - p1;
+            float depth = sqrt(dot(pen, pen));
+            vec3 rel = q - p0;
+            vec3 tangential = rel - dot(rel, n) * n;
+            float tl = sqrt(dot(tangential, tangential));
+            float limit = friction * depth;
+            if (tl <= limit) q -= tangential;
+            else q -= tangential * (limit / tl);
+        }
+        xi = rotate(rot1, q) + c1.xyz;
+    }
+    dd += xi - x_in;
+#endif
+    v_x = vec4(xi, wi);
+    v_d = vec4(dd, a_aux.w);
+    return;
+#endif
 #ifdef DRAPE_PASS_TETHER
     // kernels::tether (the CPU updates in place; anchors are kinematic, so they do not move here)
     v_x = a_x;

@@ -23,7 +23,7 @@ foreach(f IN LISTS shaders)
   endif()
 endforeach()
 
-# Simulation variants: pass x model x kinematic (+ the tether pass), grid (12 slots) and a mesh row of 32 slots.
+# Simulation variants: pass x model x kinematic (+ the tether and interaction passes), grid (12 slots) and a mesh row of 32 slots.
 foreach(slots 12 32)
   math(EXPR lambdas "(${slots} + 3) / 4")
   math(EXPR record "1 + ${lambdas}")
@@ -35,6 +35,9 @@ foreach(slots 12 32)
           -DDRAPE_LAMBDA_VEC4=${lambdas} ${kin})
   endforeach()
   check(sim.vert.glsl vert -DDRAPE_PASS_TETHER -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=1)
+  foreach(interact "-DDRAPE_DRAG" "-DDRAPE_SHAPES=4" "-DDRAPE_DRAG;-DDRAPE_SHAPES=64")
+    check(sim.vert.glsl vert -DDRAPE_PASS_INTERACT ${interact} -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=1)
+  endforeach()
   check(sim.vert.glsl vert -DDRAPE_PASS_TETHER -DDRAPE_XPBD -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=${record}
         -DDRAPE_LAMBDA_VEC4=${lambdas})
   foreach(commit "" "-DDRAPE_COMMIT")

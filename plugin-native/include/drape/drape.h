@@ -264,6 +264,10 @@ DRAPE_API drape_status drape_cloth_readback(drape_cloth* cloth);
 DRAPE_API drape_status drape_unity_render_event(void** out_callback, int32_t* out_event_id);
 
 /* ---- Colliders, sleeping, touch drag, owner transform (issue 5) -------------------------- */
+/* On a GLES cloth: colliders and touch drag run on the GPU like on the CPU (a collision pass per
+ * substep, compiled only while the cloth has colliders; it tests every collider, as the cloth's
+ * bounds are on the GPU; drape_cloth_drag reads the positions back once per call). Sleeping, grabs
+ * and the owner transform are CPU-only: they return DRAPE_ERROR_BACKEND_UNAVAILABLE for GLES cloths. */
 
 /* C# twin: Drape.Core.ColliderShape */
 typedef enum drape_collider_shape {

@@ -619,7 +619,7 @@ drape_status check_screen_point(const float* p, const char* what) {
 extern "C" {
 
 drape_status drape_cloth_set_colliders(drape_cloth* cloth, const drape_collider* colliders, uint32_t count) {
-    if (drape_status s = check_cpu_cloth(cloth, "colliders")) return s;
+    if (drape_status s = check_cloth(cloth)) return s;  // GLES too (collision pass on the GPU)
     DRAPE_REQUIRE(colliders != nullptr || count == 0, DRAPE_ERROR_NULL_POINTER, "colliders is NULL");
     DRAPE_REQUIRE(count <= DRAPE_MAX_COLLIDERS, DRAPE_ERROR_INVALID_ARGUMENT,
                   std::to_string(count) + " colliders, at most " + std::to_string(DRAPE_MAX_COLLIDERS) + " per cloth");
@@ -631,8 +631,10 @@ drape_status drape_cloth_set_colliders(drape_cloth* cloth, const drape_collider*
                               std::to_string(colliders[k].id));
     }
     return guarded([&] {
-        as_cloth(cloth)->set_colliders(colliders, count);
-        return ok();
+        // Copied: a GLES cloth on Unity's main thread applies it on the render thread.
+        std::vector<drape_collider> copy(colliders, colliders + count);
+        return apply_edit(as_cloth(cloth), Access::NoState,
+                          [copy](Cloth& c) { c.set_colliders(copy.data(), uint32_t(copy.size())); });
     });
 }
 
@@ -668,7 +670,7 @@ drape_status drape_touch_default(drape_touch* out_touch) {
 }
 
 drape_status drape_cloth_drag(drape_cloth* cloth, const drape_view* view, const drape_touch* touches, uint32_t count) {
-    if (drape_status s = check_cpu_cloth(cloth, "touch drag")) return s;
+    if (drape_status s = check_cloth(cloth)) return s;  // GLES too (reads the positions back)
     if (drape_status s = check_view(view)) return s;
     DRAPE_REQUIRE(touches != nullptr || count == 0, DRAPE_ERROR_NULL_POINTER, "touches is NULL");
     DRAPE_REQUIRE(count <= kMaxTouches, DRAPE_ERROR_INVALID_ARGUMENT,
@@ -689,8 +691,12 @@ drape_status drape_cloth_drag(drape_cloth* cloth, const drape_view* view, const 
                       what + " sigma must be in (0, 1e12] px^2");
     }
     return guarded([&] {
-        as_cloth(cloth)->drag(*view, touches, count);
-        return ok();
+        // Drag reads the current positions (a GLES cloth reads them back first); copied for the
+        // render thread.
+        std::vector<drape_touch> copy(touches, touches + count);
+        const drape_view v = *view;
+        return apply_edit(as_cloth(cloth), Access::ReadsState,
+                          [copy, v](Cloth& c) { c.drag(v, copy.data(), uint32_t(copy.size())); });
     });
 }
 

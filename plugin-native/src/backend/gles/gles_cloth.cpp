@@ -23,18 +23,18 @@ constexpr uint32_t kTexWidth = 1024;
 /// XPBD lambdas ride in the record as vec4s; sim.vert.glsl declares up to 8 (32 slots).
 constexpr uint32_t kMaxLambdaVec4 = 8;
 
-enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3, kTether = 4 };  // kCommit: last iteration
+enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3, kTether = 4, kInteract = 5 };  // kCommit: last iteration
 enum Uniform {
     uX, uAux, uNbr, uInfo, uTexWidth, uStiffness, uCompliance, uDampingRatio, uActive, uGravity, uWind, uAirDrag,
-    uDamping, uH, uInvHp, uAccelH, uCoupling, uAlong, uTris, uHRatio, kUniformCount
+    uDamping, uH, uInvHp, uAccelH, uCoupling, uAlong, uTris, uHRatio, uShapes, uShapeCount, kUniformCount
 };
 const char* const kUniformNames[kUniformCount] = {
     "u_x", "u_aux", "u_nbr", "u_info", "u_tex_width", "u_stiffness", "u_compliance", "u_damping_ratio", "u_active",
     "u_gravity", "u_wind", "u_air_drag", "u_damping", "u_h", "u_inv_hp", "u_accel_h", "u_jacobi_coupling",
-    "u_along", "u_tris", "u_h_ratio"};
+    "u_along", "u_tris", "u_h_ratio", "u_shapes", "u_shape_count"};
 // Attribute locations (bound before linking).
 enum Attrib {
-    aX = 0, aAux = 1, aKStart = 2, aKTarget = 3, aLambda0 = 4, aTetherAnchor = 12, aTetherLength = 13,
+    aX = 0, aAux = 1, aKStart = 2, aKTarget = 3, aLambda0 = 4, aTetherAnchor = 12, aTetherLength = 13, aDrag = 14,
     aParticle = 0, aKeep0 = 1
 };
 constexpr int kMaxAttribs = 16;
@@ -69,8 +69,8 @@ void delete_now(GlObjects& o) {
     glDeleteTextures(4, o.textures);
     GLuint tex[3] = {o.nbr_tex, o.info_tex, o.tri_tex};
     glDeleteTextures(3, tex);
-    GLuint bufs[5] = {o.kstart, o.targets, o.vertex_to_particle, o.scratch, o.tethers};
-    glDeleteBuffers(5, bufs);
+    GLuint bufs[6] = {o.kstart, o.targets, o.vertex_to_particle, o.scratch, o.tethers, o.drag};
+    glDeleteBuffers(6, bufs);
     if (o.vao) glDeleteVertexArrays(1, &o.vao);
     if (o.fbo) glDeleteFramebuffers(1, &o.fbo);
     if (o.rbo) glDeleteRenderbuffers(1, &o.rbo);
@@ -335,6 +335,7 @@ Result GlesCloth::ensure_gl() {
     glGenBuffers(1, &gl_.vertex_to_particle);
     glGenBuffers(1, &gl_.kstart);
     glGenBuffers(1, &gl_.tethers);
+    glGenBuffers(1, &gl_.drag);
     tethers_uploaded_.clear();
     // Static tables.
     const NeighbourTable& nb = topo_.nbr;
@@ -515,6 +516,11 @@ std::string GlesCloth::variant_defines(int pass) const {
     if (pass == kConstraint || pass == kCommit) d += "#define DRAPE_PASS_CONSTRAINT 1\n";
     if (pass == kCommit) d += "#define DRAPE_COMMIT 1\n";
     if (pass == kTether) d += "#define DRAPE_PASS_TETHER 1\n";
+    if (pass == kInteract) {
+        d += "#define DRAPE_PASS_INTERACT 1\n";
+        if (drag_variant_) d += "#define DRAPE_DRAG 1\n";
+        d += "#define DRAPE_SHAPES " + std::to_string(shape_capacity_) + "\n";
+    }
     if (pass == kPredict && params_.model == DRAPE_MODEL_PBD && params_.damping > 0) d += "#define DRAPE_DASHPOT 1\n";
     if (xpbd) d += "#define DRAPE_XPBD 1\n";
     if (pass < kConstraint && !kinematic_.empty()) d += "#define DRAPE_KINEMATIC 1\n";
@@ -530,7 +536,7 @@ Result GlesCloth::program(int pass, Program** out) {
     if (it == programs_.end()) {
         // Mass-spring and commit: positions and displacements into two buffers (separate attribs);
         // predict and constraint: one displacement-iterate record [+ lambdas] (interleaved).
-        const bool two_outputs = pass == kMassSpring || pass == kCommit || pass == kTether;
+        const bool two_outputs = pass == kMassSpring || pass == kCommit || pass == kTether || pass == kInteract;
         std::vector<std::string> varyings;
         if (two_outputs) varyings = {"v_x", "v_d"};
         else varyings = {"v_d"};
@@ -544,6 +550,7 @@ Result GlesCloth::program(int pass, Program** out) {
         for (uint32_t k = 0; k < kMaxLambdaVec4; ++k) attribs.push_back({aLambda0 + k, lambda_names[k]});
         attribs.push_back({aTetherAnchor, "a_tether_anchor"});
         attribs.push_back({aTetherLength, "a_tether_length"});
+        attribs.push_back({aDrag, "a_drag"});
         Program p;
         if (Result r = link(with_defines(shaders::sim_vert, defines), "sim.vert.glsl", varyings,
                             two_outputs ? GL_SEPARATE_ATTRIBS : GL_INTERLEAVED_ATTRIBS, attribs, &p.id);
@@ -707,6 +714,65 @@ void GlesCloth::run_tether(Program& p, int x, int d, int out_x, int out_d) {
     refresh_texture(out_d);
 }
 
+namespace {
+/// Normalised lerp along the shorter arc (core/interaction.cpp's nlerp, same operations).
+glm::quat nlerp(const glm::quat& a, glm::quat b, float t) {
+    if (glm::dot(a, b) < 0) b = -b;
+    return glm::normalize(a * (1.0f - t) + b * t);
+}
+}  // namespace
+
+uint32_t GlesCloth::build_shapes(uint32_t sub, uint32_t substeps) {
+    // The collider interpolation of Cloth::interaction_substep; its broad phase needs the cloth's
+    // bounds, which live on the GPU, so every collider is tested (the narrow phase skips a
+    // particle that cannot have touched a collider after one distance test).
+    const float t0 = float(sub) / float(substeps), t1 = float(sub + 1) / float(substeps);
+    shape_data_.clear();
+    for (const ColliderState& c : ix_.colliders) {
+        const glm::vec3 pos0 = c.pos_start + (c.pos_end - c.pos_start) * t0;
+        const glm::vec3 pos1 = sub + 1 == substeps ? c.pos_end : c.pos_start + (c.pos_end - c.pos_start) * t1;
+        const glm::quat rot0 = nlerp(c.rot_start, c.rot_end, t0);
+        const glm::quat rot1 = sub + 1 == substeps ? c.rot_end : nlerp(c.rot_start, c.rot_end, t1);
+        const float rec[20] = {pos0.x, pos0.y, pos0.z, c.margin, pos1.x, pos1.y, pos1.z, c.friction,
+                               rot0.x, rot0.y, rot0.z, rot0.w, rot1.x, rot1.y, rot1.z, rot1.w,
+                               c.size.x, c.size.y, c.size.z, float(c.shape)};
+        shape_data_.insert(shape_data_.end(), rec, rec + 20);
+    }
+    return uint32_t(ix_.colliders.size());
+}
+
+void GlesCloth::run_interact(Program& p, int x, int d, int out_x, int out_d, bool drag, uint32_t shapes) {
+    const uint32_t n = topo_.particle_count;
+    constexpr GLsizei kState = GLsizei(sizeof(Particle));
+    glUseProgram(p.id);
+    if (shapes) {
+        glUniform4fv(p.u[uShapes], GLsizei(shapes * 5), shape_data_.data());
+        glUniform1i(p.u[uShapeCount], GLint(shapes));
+    }
+    glBindVertexArray(gl_.vao);
+    for (int a = 0; a < kMaxAttribs; ++a) glDisableVertexAttribArray(GLuint(a));
+    glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[x]);
+    glEnableVertexAttribArray(aX);
+    glVertexAttribPointer(aX, 4, GL_FLOAT, GL_FALSE, kState, nullptr);
+    glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[d]);
+    glEnableVertexAttribArray(aAux);
+    glVertexAttribPointer(aAux, 4, GL_FLOAT, GL_FALSE, kState, nullptr);
+    if (drag) {
+        glBindBuffer(GL_ARRAY_BUFFER, gl_.drag);
+        glEnableVertexAttribArray(aDrag);
+        glVertexAttribPointer(aDrag, 3, GL_FLOAT, GL_FALSE, 12, nullptr);
+    }
+    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[out_x], 0, GLsizeiptr(size_t(n) * kState));
+    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 1, gl_.buffers[out_d], 0, GLsizeiptr(size_t(n) * kState));
+    glBeginTransformFeedback(GL_POINTS);
+    glDrawArrays(GL_POINTS, 0, GLsizei(n));
+    glEndTransformFeedback();
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, 0);
+    refresh_texture(out_x);
+    refresh_texture(out_d);
+}
+
 Result GlesCloth::step(float dt) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (mode_ == Mode::RenderThread) {
@@ -750,6 +816,33 @@ Result GlesCloth::gpu_step(float dt) {
     if (Result r = program(first, &p_first); !r.ok()) return r;
     if (has_tethers())  // else no tether program and no tether pass (Cloth::step's condition)
         if (Result r = program(kTether, &p_tether); !r.ok()) return r;
+    // Interaction (Cloth::interaction_substep): colliders in every substep, drag in the first.
+    // Variants: DRAPE_SHAPES = collider capacity (power of two >= 4, 0 without colliders).
+    Program *p_interact_first = nullptr, *p_interact = nullptr;
+    const uint32_t shape_count = uint32_t(ix_.colliders.size());
+    const bool dragging = !ix_.drag_particles.empty();
+    uint32_t capacity = 0;
+    if (shape_count) {
+        capacity = 4;
+        while (capacity < shape_count) capacity *= 2;
+        GLint max_vectors = 0;
+        glGetIntegerv(GL_MAX_VERTEX_UNIFORM_VECTORS, &max_vectors);
+        if (GLint(capacity * 5) + 64 > max_vectors)  // 64: the simulation's own uniforms, generously
+            return {DRAPE_ERROR_INVALID_ARGUMENT,
+                    std::to_string(shape_count) + " colliders need " + std::to_string(capacity * 5) +
+                        " uniform vectors; this GL offers " + std::to_string(max_vectors) + " to vertex shaders"};
+    }
+    if (shape_count || dragging) {
+        shape_capacity_ = capacity;
+        drag_variant_ = dragging;
+        if (Result r = program(kInteract, &p_interact_first); !r.ok()) return r;
+        if (dragging && shape_count) {
+            drag_variant_ = false;
+            if (Result r = program(kInteract, &p_interact); !r.ok()) return r;
+        } else if (!dragging) {
+            p_interact = p_interact_first;
+        }
+    }
     if (first == kPredict) {
         if (Result r = program(kConstraint, &p_constraint); !r.ok()) return r;
         if (Result r = program(kCommit, &p_commit); !r.ok()) return r;
@@ -773,6 +866,15 @@ Result GlesCloth::gpu_step(float dt) {
     }
     // sub: stiffness[3], compliance[3], damping_ratio[3], h, 1/h_prev, accel_h, h/h_prev
     // (computed on the CPU exactly as Cloth::step does, so the shader sees the same bits).
+    if (dragging) {
+        // This step's drag share per particle (Cloth::interaction_substep: offset / substeps).
+        const float part = 1.0f / float(substeps);
+        drag_share_.assign(n, glm::vec3(0.0f));
+        for (uint32_t i : ix_.drag_particles) drag_share_[i] = ix_.drag_offset[i] * part;
+        glBindBuffer(GL_ARRAY_BUFFER, gl_.drag);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n * sizeof(glm::vec3)), drag_share_.data(), GL_STREAM_DRAW);
+        glBindBuffer(GL_ARRAY_BUFFER, 0);
+    }
     float sub[13];
     for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) {
         const float k = params_.stiffness[g];
@@ -821,10 +923,19 @@ Result GlesCloth::gpu_step(float dt) {
             std::swap(cur, spare);
             std::swap(disp, spare2);
         }
+        Program* p_int = s == 0 ? p_interact_first : p_interact;
+        if (p_int) {
+            const uint32_t shapes = shape_count ? build_shapes(s, substeps) : 0;
+            ix_.collide_tests += uint64_t(n) * shapes;
+            run_interact(*p_int, cur, disp, spare, spare2, s == 0 && dragging, shapes);
+            std::swap(cur, spare);
+            std::swap(disp, spare2);
+        }
         h_prev_ = h;
         fresh_ = false;
     }
     gpu_newer_ = true;
+    interaction_end_step(dt, false);  // colliders advance, drag consumed (sleep is CPU-only)
     Result r = write_output();
     stats_.substeps = substeps;
     stats_.iterations = model == DRAPE_MODEL_MASS_SPRING ? 1 : params_.iterations;

@@ -52,7 +52,7 @@ struct GlObjects {
     GLuint buffers[4] = {};
     GLuint textures[4] = {};
     GLuint nbr_tex = 0, info_tex = 0, tri_tex = 0;
-    GLuint kstart = 0, targets = 0, vertex_to_particle = 0, scratch = 0, tethers = 0;
+    GLuint kstart = 0, targets = 0, vertex_to_particle = 0, scratch = 0, tethers = 0, drag = 0;
     GLuint vao = 0, fbo = 0, rbo = 0;
     std::vector<GLuint> programs;
     void* context = nullptr;  ///< EGLContext they were made in
@@ -122,6 +122,12 @@ private:
     /// kernels::tether: reads state buffers x and d, writes them to out_x and out_d.
     void run_tether(Program& p, int x, int d, int out_x, int out_d);
     bool has_tethers() const { return params_.max_stretch > 0 && !kinematic_.empty(); }
+    /// Cloth::interaction_substep: drag share (first substep, `drag`) and colliders (shape_data_,
+    /// `shapes` of them) on x and d, written to out_x and out_d.
+    void run_interact(Program& p, int x, int d, int out_x, int out_d, bool drag, uint32_t shapes);
+    /// Colliders of substep `sub` as Cloth::interaction_substep builds them (no broad phase: the
+    /// CPU does not see the GPU positions) into shape_data_ (5 vec4 each); returns their count.
+    uint32_t build_shapes(uint32_t sub, uint32_t substeps);
     Result write_output();
     void compute_cpu_stats();
     uint32_t record_vec4() const;
@@ -148,6 +154,10 @@ private:
     drape_vertex_layout out_layout_{};
     std::vector<std::pair<int, int>> keeps_;  // (first word, words) of passthrough chunks
     std::vector<uint32_t> tethers_uploaded_;  // (anchor, length bits) per particle in gl_.tethers
+    uint32_t shape_capacity_ = 0;  // DRAPE_SHAPES of the interaction program being asked for
+    bool drag_variant_ = false;    // DRAPE_DRAG of the interaction program being asked for
+    std::vector<float> shape_data_;
+    std::vector<glm::vec3> drag_share_;
 };
 
 }  // namespace drape::gles
