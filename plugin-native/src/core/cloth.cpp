@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "backend/cpu/kernels.h"
+#include "backend/cpu/kernels_simd.h"
 
 namespace drape {
 
@@ -23,6 +24,18 @@ Cloth::Cloth(World& world, drape_backend backend, Topology topology)
     for (uint32_t i = 0; i < n; ++i) buffers_[cur_][i] = Particle(topo_.rest_position[i], 0.0f);
     lambda_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
     slot_coef_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
+    slot_alpha_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
+    slot_gamma_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
+    const NeighbourTable& nb = topo_.nbr;
+    col_index_.resize(nb.index.size());
+    col_rest_.resize(nb.rest.size());
+    col_group_.resize(nb.group.size());
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t s = 0; s < nb.slots; ++s) {
+            col_index_[size_t(s) * n + i] = nb.index[size_t(i) * nb.slots + s];
+            col_rest_[size_t(s) * n + i] = nb.rest[size_t(i) * nb.slots + s];
+            col_group_[size_t(s) * n + i] = nb.group[size_t(i) * nb.slots + s];
+        }
     active_count_.resize(n);
     kinematic_.reserve(n);
     kinematic_start_.resize(n);
@@ -213,6 +226,10 @@ Result Cloth::step(float dt) {
     c.nbr_count = nb.count.data();
     c.active_count = active_count_.data();
     c.slots = nb.slots;
+    c.stride = n;
+    c.col_index = col_index_.data();
+    c.col_rest = col_rest_.data();
+    c.col_group = col_group_.data();
     c.lambda = model == DRAPE_MODEL_XPBD ? lambda_.data() : nullptr;
     for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) {
         const float k = params_.stiffness[g];
@@ -228,11 +245,12 @@ Result Cloth::step(float dt) {
     c.h = h;
     if (model == DRAPE_MODEL_XPBD)
         for_particles([&](uint32_t b, uint32_t e) {
-            kernels::spring_coefficients<true>(c, buffers_[cur_].data(), slot_coef_.data(), b, e);
+            kernels::spring_coefficients<true>(c, buffers_[cur_].data(), slot_coef_.data(), slot_alpha_.data(),
+                                               slot_gamma_.data(), b, e);
         });
     else if (model == DRAPE_MODEL_PBD)
         for_particles([&](uint32_t b, uint32_t e) {
-            kernels::spring_coefficients<false>(c, buffers_[cur_].data(), slot_coef_.data(), b, e);
+            kernels::spring_coefficients<false>(c, buffers_[cur_].data(), slot_coef_.data(), nullptr, nullptr, b, e);
         });
 
     for (uint32_t sub = 0; sub < substeps; ++sub) {
@@ -272,10 +290,13 @@ Result Cloth::step(float dt) {
                 Particle* src = buffers_[in].data();
                 Particle* dst = buffers_[out].data();
                 for_particles([&](uint32_t b, uint32_t e) {
-                    if (xpbd && last) kernels::constraint_iteration<true, true>(c, coef, src, cur, dst, disp, b, e);
-                    else if (xpbd) kernels::constraint_iteration<true, false>(c, coef, src, cur, dst, nullptr, b, e);
-                    else if (last) kernels::constraint_iteration<false, true>(c, coef, src, cur, dst, disp, b, e);
-                    else kernels::constraint_iteration<false, false>(c, coef, src, cur, dst, nullptr, b, e);
+                    using kernels::constraint_iteration_simd;
+                    const float* a = slot_alpha_.data();
+                    const float* g = slot_gamma_.data();
+                    if (xpbd && last) constraint_iteration_simd<true, true>(c, coef, a, g, src, cur, dst, disp, b, e);
+                    else if (xpbd) constraint_iteration_simd<true, false>(c, coef, a, g, src, cur, dst, nullptr, b, e);
+                    else if (last) constraint_iteration_simd<false, true>(c, coef, a, g, src, cur, dst, disp, b, e);
+                    else constraint_iteration_simd<false, false>(c, coef, a, g, src, cur, dst, nullptr, b, e);
                 });
                 std::swap(in, out);
             }
@@ -293,6 +314,7 @@ Result Cloth::step(float dt) {
                 kernels::tether(tether_anchor_.data(), tether_length_.data(), x, d, b, e);
             });
         }
+        if (sc_.enabled) self_collision_substep();  // issue 5: self-collision (core/self_collision.cpp)
         // issue 5: touch drag + colliders on the committed positions (core/interaction.cpp)
         if (!ix_.colliders.empty() || !ix_.drag_particles.empty()) interaction_substep(sub, substeps);
         h_prev_ = h;

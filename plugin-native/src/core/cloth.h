@@ -12,6 +12,7 @@
 #include "backend/cpu/thread_pool.h"
 #include "core/interaction.h"  // issue 5: colliders, drag, owner, sleep
 #include "core/params.h"
+#include "core/self_collision.h"  // issue 5: self-collision
 #include "core/topology.h"
 #include "drape/drape.h"
 
@@ -67,6 +68,9 @@ public:
     void grab_release(uint32_t touch_id);
     void set_owner(const drape_owner& owner);
     uint64_t collide_tests() const { return ix_.collide_tests; }
+    // issue 5: self-collision (defined in core/self_collision.cpp)
+    void set_self_collision(bool enabled, float thickness, float friction);
+    const SelfCollision& self_collision() const { return sc_; }
     uint32_t grab_count() const { return uint32_t(ix_.grabs.size()); }
     bool grabbing(uint32_t touch_id) const {
         for (const Grab& g : ix_.grabs)
@@ -88,6 +92,8 @@ protected:
     void interaction_substep(uint32_t sub, uint32_t substeps);
     void interaction_end_step(float dt, bool rolled_back);
     Interaction ix_;
+    void self_collision_substep();  // issue 5 hook in step() (core/self_collision.cpp)
+    SelfCollision sc_;
     template <class Fn>
     void for_particles(Fn&& fn);
 
@@ -104,6 +110,11 @@ protected:
     bool fresh_ = true;     ///< next substep is the first since positions/velocities were set
     std::vector<float> lambda_;
     std::vector<float> slot_coef_;  ///< per-spring Jacobi factor of the current step (kernels.h)
+    std::vector<float> slot_alpha_, slot_gamma_;  ///< XPBD per-spring compliance, damping ratio
+    // Column-major copy of the neighbour table for the constraint iteration (kernels.h).
+    std::vector<uint32_t> col_index_;
+    std::vector<float> col_rest_;
+    std::vector<uint8_t> col_group_;
 
     // Masses and pins.
     std::vector<float> base_inverse_mass_;   ///< per particle, before pinning

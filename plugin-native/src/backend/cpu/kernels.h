@@ -13,6 +13,7 @@
 // gravity entirely (a stiff mass-spring cloth at y = 10 m would never fall); d keeps it exactly.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -43,7 +44,14 @@ struct SubstepContext {
     const uint32_t* nbr_count;
     const uint32_t* active_count;  ///< active springs per particle (Jacobi row sums)
     uint32_t slots;
-    float* lambda;                 ///< XPBD multipliers, one per slot (both ends keep equal copies)
+    // Column-major copies of the table for the constraint iteration: slot s of particle i at
+    // s * stride + i, so four consecutive particles' slot s are contiguous (kernels_simd.h).
+    uint32_t stride;               ///< particle count
+    const uint32_t* col_index;
+    const float* col_rest;
+    const uint8_t* col_group;
+    float* lambda;                 ///< XPBD multipliers, one per slot, column-major (both ends keep
+                                   ///< equal copies)
     GroupConstants groups;
     glm::vec3 gravity, wind;
     float air_drag;
@@ -141,9 +149,10 @@ inline void predict(const SubstepContext& c, const Particle* x, const Particle* 
             dn = glm::vec3(d[i]) * c.h_ratio + a * (c.h * c.accel_h);
         }
         out[i] = Particle(dn, wi);
-        if (c.lambda)
-            for (uint32_t s = 0; s < c.slots; ++s) c.lambda[size_t(i) * c.slots + s] = 0.0f;
     }
+    if (c.lambda)  // column-major: one contiguous run per slot
+        for (uint32_t s = 0; s < c.slots; ++s)
+            std::fill(c.lambda + size_t(s) * c.stride + begin, c.lambda + size_t(s) * c.stride + end, 0.0f);
 }
 
 /// Jacobi scaling of one constraint's update: 1 / (1 + theta R), R = the constraint's off-diagonal
@@ -157,16 +166,27 @@ inline float jacobi_scale(float wi, float wj, uint32_t ci, uint32_t cj, float di
 
 /// Per-spring factor of a Jacobi update, computed once per step (it depends on h, the masses and
 /// the active springs, none of which change between substeps): XPBD's 1/diag and PBD's k/wsum,
-/// each times jacobi_scale. Written for row i's slots; symmetric in i and j.
+/// each times jacobi_scale; 0 for inactive springs and padding. Column-major like `lambda`;
+/// symmetric in i and j.
+/// XPBD also gets each slot's compliance and damping ratio (per group) in column-major arrays, so
+/// the four-lane kernel loads them instead of looking them up per lane.
 template <bool kXpbd>
-inline void spring_coefficients(const SubstepContext& c, const Particle* x, float* coef, uint32_t begin, uint32_t end) {
+inline void spring_coefficients(const SubstepContext& c, const Particle* x, float* coef, float* alpha, float* gamma,
+                                uint32_t begin, uint32_t end) {
     for (uint32_t i = begin; i < end; ++i) {
         const float wi = x[i].w;
         const size_t row = size_t(i) * c.slots;
-        for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
+        for (uint32_t s = 0; s < c.slots; ++s) {
             const size_t slot = row + s;
-            coef[slot] = 0.0f;
-            if (!active_slot(c, slot) || wi == 0.0f) continue;
+            const size_t col = size_t(s) * c.stride + i;
+            float& k = coef[col];
+            k = 0.0f;
+            if (kXpbd) {
+                const uint8_t g = c.nbr_group[slot];
+                alpha[col] = g < DRAPE_GROUP_COUNT ? c.groups.compliance[g] : 0.0f;
+                gamma[col] = g < DRAPE_GROUP_COUNT ? c.groups.damping_ratio[g] : 0.0f;
+            }
+            if (s >= c.nbr_count[i] || !active_slot(c, slot) || wi == 0.0f) continue;
             const uint32_t j = c.nbr_index[slot];
             const uint8_t g = c.nbr_group[slot];
             const float wj = x[j].w;
@@ -174,9 +194,9 @@ inline void spring_coefficients(const SubstepContext& c, const Particle* x, floa
             if (kXpbd) {
                 const float gamma = c.groups.damping_ratio[g];
                 const float diag = (1.0f + gamma) * wsum + c.groups.compliance[g];
-                coef[slot] = jacobi_scale(wi, wj, c.active_count[i], c.active_count[j], diag, 1.0f + gamma) / diag;
+                k = jacobi_scale(wi, wj, c.active_count[i], c.active_count[j], diag, 1.0f + gamma) / diag;
             } else {
-                coef[slot] = c.groups.stiffness[g] * jacobi_scale(wi, wj, c.active_count[i], c.active_count[j], wsum, 1.0f) / wsum;
+                k = c.groups.stiffness[g] * jacobi_scale(wi, wj, c.active_count[i], c.active_count[j], wsum, 1.0f) / wsum;
             }
         }
     }
@@ -197,18 +217,17 @@ inline void constraint_iteration(const SubstepContext& c, const float* coef, con
         const glm::vec3 si(start[i]);
         glm::vec3 dx(0.0f);
         if (wi != 0.0f) {
-            const size_t row = size_t(i) * c.slots;
             const uint32_t count = c.nbr_count[i];
             for (uint32_t s = 0; s < count; ++s) {
-                const size_t slot = row + s;
-                const uint32_t j = c.nbr_index[slot];
+                const size_t slot = size_t(s) * c.stride + i;
+                const uint32_t j = c.col_index[slot];
                 const glm::vec3 dij = di - glm::vec3(disp[j]);
                 float len;
                 const glm::vec3 n = direction((si - glm::vec3(start[j])) + dij, &len);
-                const float constraint = len - c.nbr_rest[slot];
+                const float constraint = len - c.col_rest[slot];
                 float dl;
                 if (kXpbd) {
-                    const uint8_t g = c.nbr_group[slot];
+                    const uint8_t g = c.col_group[slot];
                     dl = (-constraint - c.groups.compliance[g] * c.lambda[slot] -
                           c.groups.damping_ratio[g] * glm::dot(n, dij)) * coef[slot];
                     c.lambda[slot] += dl;

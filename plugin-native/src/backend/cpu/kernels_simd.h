@@ -1,0 +1,137 @@
+// constraint_iteration (kernels.h) on four particles at once: SSE on x86-64, NEON on arm64.
+//
+// Each lane does exactly the scalar kernel's float operations in the same order (IEEE add, mul,
+// div and sqrt are correctly rounded in every lane, and no multiply-add is contracted), so
+// results are bit-identical to kernels::constraint_iteration and the GLES mirror still matches.
+// Lanes past their particle's spring count read the padding slots, whose factor is 0, and add
+// nothing.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+#include "backend/cpu/kernels.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#define DRAPE_SIMD 1
+#elif defined(__ARM_NEON) && defined(__aarch64__)
+#include <arm_neon.h>
+#define DRAPE_SIMD 1
+#else
+#define DRAPE_SIMD 0
+#endif
+
+namespace drape::kernels {
+
+#if DRAPE_SIMD
+namespace simd {
+
+typedef float F4 __attribute__((vector_size(16)));
+typedef int32_t I4 __attribute__((vector_size(16)));
+
+inline F4 sqrt4(F4 v) {
+#if defined(__SSE2__)
+    return F4(_mm_sqrt_ps(__m128(v)));
+#else
+    return F4(vsqrtq_f32(float32x4_t(v)));
+#endif
+}
+
+struct V3 {
+    F4 x, y, z;
+};
+
+// Component-wise x, y, z of four records.
+inline V3 gather(const Particle* p, const uint32_t idx[4]) {
+    V3 r;
+#if defined(__SSE2__)
+    __m128 a = _mm_loadu_ps(&p[idx[0]].x), b = _mm_loadu_ps(&p[idx[1]].x);
+    __m128 c = _mm_loadu_ps(&p[idx[2]].x), d = _mm_loadu_ps(&p[idx[3]].x);
+    _MM_TRANSPOSE4_PS(a, b, c, d);
+    r.x = F4(a), r.y = F4(b), r.z = F4(c);
+#else
+    for (int l = 0; l < 4; ++l) {
+        r.x[l] = p[idx[l]].x;
+        r.y[l] = p[idx[l]].y;
+        r.z[l] = p[idx[l]].z;
+    }
+#endif
+    return r;
+}
+
+}  // namespace simd
+#endif
+
+template <bool kXpbd, bool kCommit>
+inline void constraint_iteration_simd(const SubstepContext& c, const float* coef, const float* slot_alpha,
+                                      const float* slot_gamma, const Particle* disp,
+                                      const Particle* start, Particle* out, Particle* x_out, uint32_t begin,
+                                      uint32_t end) {
+#if DRAPE_SIMD
+    using simd::F4;
+    using simd::V3;
+    uint32_t i = begin;
+    for (; i + 4 <= end; i += 4) {
+        const uint32_t self[4] = {i, i + 1, i + 2, i + 3};
+        const V3 di = simd::gather(disp, self);
+        const V3 si = simd::gather(start, self);
+        F4 wi;
+        uint32_t max_count = 0;
+        for (int l = 0; l < 4; ++l) {
+            wi[l] = disp[i + l].w;
+            max_count = c.nbr_count[i + l] > max_count ? c.nbr_count[i + l] : max_count;
+        }
+        V3 dx{F4{0, 0, 0, 0}, F4{0, 0, 0, 0}, F4{0, 0, 0, 0}};
+        for (uint32_t s = 0; s < max_count; ++s) {
+            const size_t base = size_t(s) * c.stride + i;  // four consecutive slots (column-major)
+            uint32_t j[4];
+            F4 rest, k, lambda = {0, 0, 0, 0}, alpha = {0, 0, 0, 0}, gamma = {0, 0, 0, 0};
+            std::memcpy(j, c.col_index + base, sizeof j);
+            std::memcpy(&rest, c.col_rest + base, sizeof rest);
+            std::memcpy(&k, coef + base, sizeof k);
+            if (kXpbd) {
+                std::memcpy(&lambda, c.lambda + base, sizeof lambda);
+                std::memcpy(&alpha, slot_alpha + base, sizeof alpha);
+                std::memcpy(&gamma, slot_gamma + base, sizeof gamma);
+            }
+            const V3 dj = simd::gather(disp, j);
+            const V3 sj = simd::gather(start, j);
+            const V3 dij{di.x - dj.x, di.y - dj.y, di.z - dj.z};
+            const V3 d{(si.x - sj.x) + dij.x, (si.y - sj.y) + dij.y, (si.z - sj.z) + dij.z};
+            const F4 len = simd::sqrt4(d.x * d.x + d.y * d.y + d.z * d.z);
+            const F4 one = {1, 1, 1, 1};
+            const F4 zero = {0, 0, 0, 0};
+            const F4 inv = len > zero ? one / len : zero;  // direction(): zero for a zero length
+            const V3 n{d.x * inv, d.y * inv, d.z * inv};
+            const F4 constraint = len - rest;
+            F4 dl;
+            if (kXpbd) {
+                const F4 ndot = n.x * dij.x + n.y * dij.y + n.z * dij.z;
+                dl = (-constraint - alpha * lambda - gamma * ndot) * k;
+                // Padding slots hold lambda 0 and get dl 0 (their factor is 0).
+                const F4 updated = lambda + dl;
+                std::memcpy(c.lambda + base, &updated, sizeof updated);
+            } else {
+                dl = -constraint * k;
+            }
+            const F4 wdl = wi * dl;
+            dx.x += wdl * n.x;
+            dx.y += wdl * n.y;
+            dx.z += wdl * n.z;
+        }
+        for (int l = 0; l < 4; ++l) {
+            // Kinematic lanes: every factor of theirs is 0, so dx is 0 as in the scalar kernel.
+            const glm::vec3 dn(di.x[l] + (wi[l] != 0.0f ? dx.x[l] : 0.0f), di.y[l] + (wi[l] != 0.0f ? dx.y[l] : 0.0f),
+                               di.z[l] + (wi[l] != 0.0f ? dx.z[l] : 0.0f));
+            out[i + l] = Particle(dn, wi[l]);
+            if (kCommit) x_out[i + l] = Particle(glm::vec3(si.x[l], si.y[l], si.z[l]) + dn, wi[l]);
+        }
+    }
+    constraint_iteration<kXpbd, kCommit>(c, coef, disp, start, out, x_out, i, end);
+#else
+    constraint_iteration<kXpbd, kCommit>(c, coef, disp, start, out, x_out, begin, end);
+#endif
+}
+
+}  // namespace drape::kernels
