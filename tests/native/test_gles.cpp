@@ -117,6 +117,11 @@ TEST_P(GlesParity, MatchesCpuEveryStep) {
         p.damping = 1.0f;
         p.iterations = 12;
         p.substeps = pc.model == DRAPE_MODEL_MASS_SPRING ? 0 : 3;
+        // Soft explicit springs pulled taut by tethers after the step-12 pin move are chaotic on
+        // the CPU alone (a 1e-7 m nudge of one vertex grew to 1.65e-2 m by step 24, measured), so
+        // parity past that point would test the chaos, not the kernels. The tether pass is
+        // covered by the other cases (defaults, stiff set).
+        if (pc.model == DRAPE_MODEL_MASS_SPRING) p.max_stretch = 0.0f;
     } else if (pc.model == DRAPE_MODEL_PBD) {
         p.stiffness[0] = 1.0f;
         p.stiffness[1] = 1.0f;
