@@ -2,8 +2,8 @@
 # The C# part of `npm test` (needs the native library from `bash .ci/build.sh release`):
 #  1. the Unity package's .meta files (complete, unique, no orphans) and version, plus a self-test
 #     proving that check fails on broken trees;
-#  2. compile checks of unity-package/Runtime and Editor against the signature-only Unity stand-ins
-#     (tests/dotnet/UnityStandIn: compile only, nothing runs), with legacy input and Input System;
+#  2. compile checks of unity-package/Runtime, Editor and Samples~ against the signature-only Unity
+#     stand-ins (tests/dotnet/UnityStandIn: compile only, nothing runs), with legacy input and Input System;
 #  3. NUnit tests of Drape.Core (unity-package/Tests/Core + tests/dotnet) against libdrape.so.
 # NuGet packages (NUnit, NUnit3TestAdapter, Microsoft.NET.Test.Sdk) are restored by dotnet from the
 # registry into ~/.nuget/packages; later runs restore from that cache without the network.
@@ -20,5 +20,6 @@ node .ci/unity-meta.mjs check unity-package --root-version package.json
 
 dotnet build tests/dotnet/CompileCheck/Drape.Editor.CompileCheck.csproj -nologo -v quiet
 dotnet build tests/dotnet/CompileCheck/Drape.Runtime.CompileCheck.csproj -nologo -v quiet -p:DrapeInput=InputSystem
+dotnet build tests/dotnet/CompileCheck/Drape.Samples.CompileCheck.csproj -nologo -v quiet
 
 dotnet test tests/dotnet/Drape.Core.Tests/Drape.Core.Tests.csproj -nologo -v quiet

@@ -1,6 +1,7 @@
 using Drape.Core;
 using UnityEditor;
 using UnityEngine;
+using UnityEngine.Rendering;
 
 namespace Drape.Editor
 {
@@ -32,7 +33,7 @@ namespace Drape.Editor
                 EditorGUILayout.LabelField("Strain max / rms", (s.MaxStrain * 100f).ToString("F2") + " % / " +
                                                                    (s.RmsStrain * 100f).ToString("F2") + " %");
                 EditorGUILayout.LabelField("Rolled-back steps", s.UnstableSteps.ToString());
-                if (cloth.IsAsleep) EditorGUILayout.HelpBox("Asleep (below the sleep threshold).", MessageType.Info);
+                if (cloth.IsAsleep) EditorGUILayout.HelpBox("Asleep (came to rest; steps cost nothing until something changes).", MessageType.Info);
                 Repaint();
             }
         }
@@ -59,12 +60,24 @@ namespace Drape.Editor
             if (cloth.Model == Model.Pbd &&
                 (cloth.StructuralStiffness > 1f || cloth.ShearStiffness > 1f || cloth.BendStiffness > 1f))
                 list.Add("PBD stiffness is a fraction per iteration in [0, 1]; values above 1 are refused by the native library.");
-            if (cloth.Backend == DrapeBackendChoice.Gpu)
-                list.Add("The GPU backend awaits the native render-event API; the cloth runs on the CPU meanwhile.");
-            if (cloth.Colliders.Colliders.Count + cloth.Colliders.Planes.Count > 0)
-                list.Add("Collision awaits the native collider API: listed colliders are gathered but not used yet.");
-            if (cloth.GetComponent<DrapeTouchDrag>() != null)
-                list.Add("Touch drag awaits the native drag API: input is read but does not move the cloth yet.");
+            if (cloth.Backend == DrapeBackendChoice.Gpu && cloth.SimulationSpace == DrapeSimulationSpace.World)
+                list.Add("The GPU backend simulates in Local space only; with World space the cloth runs on the CPU.");
+            else if (cloth.Backend == DrapeBackendChoice.Gpu && SystemInfo.graphicsDeviceType != GraphicsDeviceType.OpenGLES3)
+                list.Add("The GPU backend needs the OpenGL ES 3 graphics API (this editor uses " + SystemInfo.graphicsDeviceType +
+                         "); the cloth runs on the CPU here and on the GPU on a GLES3 device.");
+            if (cloth.Colliders.Colliders.Count + cloth.Colliders.Planes.Count > Cloth.MaxColliders)
+                list.Add("More than " + Cloth.MaxColliders + " colliders and planes are listed; the rest are ignored.");
+            foreach (UnityEngine.Collider c in cloth.Colliders.Colliders)
+                if (c != null && !(c is SphereCollider) && !(c is CapsuleCollider) && !(c is BoxCollider))
+                    list.Add("Collider '" + c.name + "' is not a Sphere, Capsule or Box collider and is ignored.");
+            if (cloth.SimulationSpace == DrapeSimulationSpace.Local && cloth.Colliders.Colliders.Count > 0)
+            {
+                Vector3 sc = cloth.transform.lossyScale;
+                if (Mathf.Abs(sc.x - sc.y) > 1e-3f * Mathf.Abs(sc.x) || Mathf.Abs(sc.x - sc.z) > 1e-3f * Mathf.Abs(sc.x))
+                    list.Add("Non-uniform scale on the cloth: colliders are sized by its mean scale in Local space.");
+            }
+            if (cloth.Backend == DrapeBackendChoice.Gpu && cloth.SleepThreshold > 0f)
+                list.Add("Sleeping, grabs and World space are CPU-only; the GPU backend ignores the sleep threshold.");
             if (cloth.Source == DrapeShapeSource.MeshFilterMesh)
             {
                 var filter = cloth.GetComponent<MeshFilter>();
@@ -101,7 +114,7 @@ namespace Drape.Editor
             }
             Gizmos.matrix = Matrix4x4.identity;
             Gizmos.color = new Color(0.2f, 0.8f, 1f);
-            foreach (Collider c in cloth.Colliders.Colliders)
+            foreach (UnityEngine.Collider c in cloth.Colliders.Colliders)
             {
                 if (c == null) continue;
                 Bounds b = c.bounds;

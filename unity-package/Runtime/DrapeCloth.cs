@@ -25,9 +25,19 @@ namespace Drape
         Auto = 0,
         Cpu = 1,
         CpuThreaded = 2,
-        /// <summary>OpenGL ES 3 transform feedback. AWAITS NATIVE API (render event, Unity VBO);
-        /// falls back to the CPU until then.</summary>
+        /// <summary>OpenGL ES 3 transform feedback writing straight into the mesh's vertex buffer
+        /// (OpenGLES3 graphics device only, Local simulation space; else falls back to the CPU).</summary>
         Gpu = 3,
+    }
+
+    /// <summary>The space the cloth is simulated in.</summary>
+    public enum DrapeSimulationSpace
+    {
+        /// <summary>The GameObject's local space: moving the object carries the cloth rigidly (no inertia).</summary>
+        Local = 0,
+        /// <summary>World space with the GameObject as the cloth's owner (drape_owner): pins follow it,
+        /// the rest of the cloth lags and swings by the inertia settings. CPU backends only.</summary>
+        World = 1,
     }
 
     /// <summary>Which vertices are pinned.</summary>
@@ -63,9 +73,10 @@ namespace Drape
     }
 
     /// <summary>Simulates this GameObject's mesh (or a generated grid) as cloth with Drape's native
-    /// solver and renders the result through the MeshFilter. Simulation space is the GameObject's
-    /// local space: gravity and wind are turned into it every step, so moving the object carries the
-    /// cloth (and its pins) along rigidly.</summary>
+    /// solver and renders the result through the MeshFilter. In Local simulation space gravity and
+    /// wind are turned into the GameObject's space every step, so moving the object carries the cloth
+    /// (and its pins) along rigidly; in World space the GameObject is the cloth's owner transform and
+    /// the cloth reacts to its motion with inertia. Colliders are pushed once per frame in one call.</summary>
     [DisallowMultipleComponent]
     [RequireComponent(typeof(MeshFilter))]
     [AddComponentMenu("Drape/Drape Cloth")]
@@ -156,16 +167,30 @@ namespace Drape
         [Tooltip("Stop stepping while no camera renders the cloth (shadows and Scene view count).")]
         public bool PauseWhenInvisible = true;
 
-        [Tooltip("Sleep when the mean kinetic energy per kg (J/kg) stays below this for 30 steps; 0 = never. " +
-                 "Wakes on parameter, pin or transform changes.")]
-        [Range(0f, 0.01f)] public float SleepThreshold = 0f;
+        [Tooltip("Sleep (stop stepping, no cost) when the fastest vertex stays below this speed, m/s, for Sleep Time; " +
+                 "0 = never. Moving colliders, pins, drag, the owner or parameter changes wake it. CPU backends only.")]
+        [Range(0f, 0.5f)] public float SleepThreshold = 0.01f;
+
+        [Tooltip("Seconds the motion must stay below the sleep threshold before the cloth sleeps.")]
+        [Range(0f, 10f)] public float SleepTime = 1f;
+
+        [Header("Space and owner")]
+        [Tooltip("Local: the cloth lives in this GameObject's space and moves rigidly with it. " +
+                 "World: the GameObject is the cloth's owner; pins follow it and the cloth swings with inertia (CPU only).")]
+        public DrapeSimulationSpace SimulationSpace = DrapeSimulationSpace.Local;
+
+        [Tooltip("World space: how much of the owner's linear motion the free cloth resists (1 = fully world space, 0 = carried along).")]
+        [Range(0f, 1f)] public float LinearInertia = 1f;
+
+        [Tooltip("World space: the same for the owner's rotation.")]
+        [Range(0f, 1f)] public float AngularInertia = 1f;
+
+        [Tooltip("World space: a jump of the owner further than this (m) moves the cloth rigidly instead of stretching it.")]
+        [Range(0.01f, 100f)] public float TeleportDistance = 1f;
 
         [Header("Colliders")]
-        [Tooltip("AWAITS NATIVE API: listed colliders are gathered (see DrapeColliderSet) but drape.h cannot take them yet.")]
+        [Tooltip("Unity colliders and planes the cloth collides with; their transforms are pushed every frame.")]
         public DrapeColliderSet Colliders = new DrapeColliderSet();
-
-        /// <summary>True once native collider registration exists; until then nothing is sent.</summary>
-        public const bool NativeCollidersAvailable = false;
 
         // Native objects and buffers.
         private World _world;
@@ -183,9 +208,15 @@ namespace Drape
         private float _accumulator;
         private bool _paramsDirty = true;
         private bool _pinsDirty = true;
-        private int _quietSteps;
-        private bool _asleep;
+        private bool _sleepDirty = true;
+        private bool _worldSpace;
+        private int _sentColliders;
+        private bool _collidersUnsupported;
+        private bool _warnedTruncated;
         private Stats _lastStats;
+
+        // GPU path: the GL buffer name of stream 0, fetched once at init.
+        private uint _glBuffer;
 
         private static readonly VertexLayout s_layout = new VertexLayout(24, 0, 12);
 
@@ -201,8 +232,11 @@ namespace Drape
         /// <summary>The backend the cloth actually runs on.</summary>
         public Drape.Core.Backend ActiveBackend { get; private set; }
 
-        /// <summary>True while stepping is skipped because the cloth came to rest.</summary>
-        public bool IsAsleep => _asleep;
+        /// <summary>True while the native cloth sleeps (came to rest; steps do no work).</summary>
+        public bool IsAsleep => _lastStats.Sleeping != 0;
+
+        /// <summary>Simulation space -&gt; world: the matrix touch drag passes as drape_view.world.</summary>
+        public Matrix4x4 SimulationToWorld => _worldSpace ? Matrix4x4.identity : transform.localToWorldMatrix;
 
         /// <summary>Pinned vertex indices in use (valid while enabled).</summary>
         public ReadOnlySpan<uint> ActivePins => new ReadOnlySpan<uint>(_pinnedIndices, 0, _pinCount);
@@ -233,7 +267,7 @@ namespace Drape
             // May run off the main thread: only flag; the next step applies the change.
             _paramsDirty = true;
             _pinsDirty = true;
-            _asleep = false;
+            _sleepDirty = true;
         }
 
         private void FixedUpdate()
@@ -258,11 +292,11 @@ namespace Drape
             if (steps > 0) Simulate(FixedStep, steps);
         }
 
-        /// <summary>Wakes a sleeping cloth (for example after moving something it rests on).</summary>
+        /// <summary>Wakes a sleeping cloth. Rarely needed: colliders, pins, drag, the owner and
+        /// parameter changes wake it natively.</summary>
         public void WakeUp()
         {
-            _asleep = false;
-            _quietSteps = 0;
+            if (_cloth != null && ActiveBackend != Drape.Core.Backend.Gles) _cloth.Wake();
         }
 
         /// <summary>Marks parameters as changed: they are pushed before the next step.</summary>
@@ -276,38 +310,96 @@ namespace Drape
         {
             if (_cloth == null) return;
             if (PauseWhenInvisible && _renderer != null && !_renderer.isVisible) return;
-            if (transform.hasChanged)
+            bool gpu = ActiveBackend == Drape.Core.Backend.Gles;
+            try
             {
-                transform.hasChanged = false;
-                _paramsDirty = true; // gravity and wind are re-expressed in local space
-                WakeUp();
-            }
-            if (_pinsDirty) ApplyPins();
-            if (_paramsDirty) ApplyParams();
-            if (_asleep) return;
+                if (transform.hasChanged)
+                {
+                    transform.hasChanged = false;
+                    if (!_worldSpace) _paramsDirty = true; // gravity and wind are re-expressed in local space
+                }
+                if (_pinsDirty) ApplyPins();
+                if (_paramsDirty) ApplyParams();
+                if (_sleepDirty && !gpu) ApplySleep();
+                if (_worldSpace) PushOwner();
+                PushColliders();
 
-            for (int i = 0; i < steps; ++i) _cloth.Step(dt);
-            _lastStats = _cloth.GetStats();
-            UpdateSleep();
-            WriteMesh();
+                bool wasAsleep = _lastStats.Sleeping != 0;
+                for (int i = 0; i < steps; ++i) _cloth.Step(dt);
+                if (gpu) return; // the GPU wrote the mesh's vertex buffer; nothing to read back
+                _lastStats = _cloth.GetStats();
+                if (wasAsleep && _lastStats.Sleeping != 0) return; // nothing moved: the mesh is current
+                WriteMesh();
+            }
+            catch (DrapeException e) when (e.Status == Status.ErrorUnstable)
+            {
+                // The native side restored the last good state; keep going and say so.
+                Debug.LogWarning("Drape: " + name + ": " + e.NativeMessage + " (state rolled back). Raise substeps or lower stiffness.", this);
+            }
+            catch (Exception e)
+            {
+                Debug.LogException(e, this);
+                enabled = false;
+            }
         }
 
-        private void UpdateSleep()
+        private void ApplySleep()
         {
-            if (SleepThreshold <= 0f)
+            _sleepDirty = false;
+            _cloth.SetSleep(Mathf.Max(0f, SleepThreshold), Mathf.Max(0f, SleepTime));
+        }
+
+        private void PushOwner()
+        {
+            Owner o = Owner.Default();
+            o.Position = DrapeConvert.ToDrape(transform.position);
+            o.Rotation = DrapeConvert.ToDrape(transform.rotation);
+            o.LinearInertia = Mathf.Clamp01(LinearInertia);
+            o.AngularInertia = Mathf.Clamp01(AngularInertia);
+            o.TeleportDistance = Mathf.Max(0.001f, TeleportDistance);
+            _cloth.SetOwner(o);
+        }
+
+        /// <summary>Every listed collider's current transform, in one native call (no allocation).</summary>
+        private void PushColliders()
+        {
+            if (_collidersUnsupported) return;
+            Colliders.Gather(_worldSpace ? null : transform);
+            if (Colliders.Truncated && !_warnedTruncated)
             {
-                _quietSteps = 0;
-                return;
+                _warnedTruncated = true;
+                Debug.LogWarning("Drape: " + name + " lists more than " + Cloth.MaxColliders + " colliders; the rest are ignored.", this);
             }
-            float perKg = _lastStats.KineticEnergy / Mathf.Max(TotalMass, 1e-6f);
-            _quietSteps = perKg < SleepThreshold ? _quietSteps + 1 : 0;
-            if (_quietSteps >= 30) _asleep = true;
+            if (Colliders.Count == 0 && _sentColliders == 0) return;
+            try
+            {
+                _cloth.SetColliders(Colliders.Records);
+                _sentColliders = Colliders.Count;
+            }
+            catch (DrapeException e) when (e.Status == Status.ErrorBackendUnavailable)
+            {
+                _collidersUnsupported = true;
+                Debug.LogWarning("Drape: " + name + ": colliders are not supported on backend " + ActiveBackend + ": " +
+                                 e.NativeMessage, this);
+            }
         }
 
         private unsafe void WriteMesh()
         {
             int count = _vertices.Length;
             _cloth.Read(s_layout, NativeArrayUnsafeUtility.GetUnsafePtr(_vertices), (long)count * 24);
+            if (_worldSpace)
+            {
+                // Simulated in world space; the renderer draws in the GameObject's space.
+                Matrix4x4 toLocal = transform.worldToLocalMatrix;
+                for (int i = 0; i < count; ++i)
+                {
+                    DrapeVertex v = _vertices[i];
+                    v.Position = toLocal.MultiplyPoint3x4(v.Position);
+                    v.Normal = toLocal.MultiplyVector(v.Normal).normalized;
+                    _vertices[i] = v;
+                }
+            }
             // Bounds from the simulated positions (the renderer culls with them).
             Vector3 min = _vertices[0].Position, max = min;
             for (int i = 1; i < count; ++i)
@@ -323,8 +415,26 @@ namespace Drape
             _mesh.bounds = bounds;
         }
 
+        /// <summary>True if the GLES backend can run this cloth here: an OpenGL ES 3 device (the
+        /// native plug-in records on the main thread and runs GL at the render event), the library
+        /// reports the backend available, and the cloth simulates in local space.</summary>
+        public bool GpuUsable()
+        {
+            if (SimulationSpace != DrapeSimulationSpace.Local) return false;
+            if (SystemInfo.graphicsDeviceType != GraphicsDeviceType.OpenGLES3) return false;
+            try
+            {
+                return World.IsBackendAvailable(Drape.Core.Backend.Gles);
+            }
+            catch (DrapeException)
+            {
+                return false;
+            }
+        }
+
         private Drape.Core.Backend ChooseBackend(int vertexCount)
         {
+            Drape.Core.Backend cpu = vertexCount >= 2048 ? Drape.Core.Backend.CpuThreaded : Drape.Core.Backend.Cpu;
             switch (Backend)
             {
                 case DrapeBackendChoice.Cpu:
@@ -332,13 +442,12 @@ namespace Drape
                 case DrapeBackendChoice.CpuThreaded:
                     return Drape.Core.Backend.CpuThreaded;
                 case DrapeBackendChoice.Gpu:
-                    // AWAITS NATIVE API: the GLES path needs a render-event entry point and the Unity
-                    // vertex buffer hand-over, which drape.h does not have yet.
-                    Debug.LogWarning("Drape: the GPU backend is not available yet (awaits the native render-event API); " +
-                                     "running on the CPU.", this);
-                    return Drape.Core.Backend.CpuThreaded;
+                    if (GpuUsable()) return Drape.Core.Backend.Gles;
+                    Debug.LogWarning("Drape: " + name + ": the GPU backend needs an OpenGL ES 3 device, a library built " +
+                                     "with GLES and Local simulation space; running on the CPU.", this);
+                    return cpu;
                 default:
-                    return vertexCount >= 2048 ? Drape.Core.Backend.CpuThreaded : Drape.Core.Backend.Cpu;
+                    return GpuUsable() ? Drape.Core.Backend.Gles : cpu;
             }
         }
 
@@ -367,6 +476,8 @@ namespace Drape
                 _restColors = _originalMesh.colors;
             }
             _restPositions = positions;
+            _worldSpace = SimulationSpace == DrapeSimulationSpace.World;
+            Matrix4x4 toSim = _worldSpace ? transform.localToWorldMatrix : Matrix4x4.identity;
 
             _world = DrapeSimulation.Acquire();
             ActiveBackend = ChooseBackend(positions.Length);
@@ -375,15 +486,18 @@ namespace Drape
             {
                 // The native grid path: the paper's 12-neighbour stencil (structural, shear, bend),
                 // same vertex order as MakeGrid (r * columns + c).
+                // In world space the grid's corner and edges are the transformed local ones.
+                Vector3 u = toSim.MultiplyVector(new Vector3(Size.x, 0f, 0f));
+                Vector3 v = toSim.MultiplyVector(new Vector3(0f, -Size.y, 0f));
                 var grid = new GridDesc
                 {
                     Columns = (uint)Columns,
                     Rows = (uint)Rows,
-                    Width = Size.x,
-                    Height = Size.y,
-                    Origin = new Float3(-0.5f * Size.x, 0f, 0f),
-                    AxisU = new Float3(1f, 0f, 0f),
-                    AxisV = new Float3(0f, -1f, 0f),
+                    Width = u.magnitude,
+                    Height = v.magnitude,
+                    Origin = DrapeConvert.ToDrape(toSim.MultiplyPoint3x4(new Vector3(-0.5f * Size.x, 0f, 0f))),
+                    AxisU = DrapeConvert.ToDrape(u.normalized),
+                    AxisV = DrapeConvert.ToDrape(v.normalized),
                 };
                 _cloth = Cloth.CreateGrid(_world, desc, grid);
             }
@@ -392,9 +506,10 @@ namespace Drape
                 var flat = new float[positions.Length * 3];
                 for (int i = 0; i < positions.Length; ++i)
                 {
-                    flat[3 * i] = positions[i].x;
-                    flat[3 * i + 1] = positions[i].y;
-                    flat[3 * i + 2] = positions[i].z;
+                    Vector3 p = toSim.MultiplyPoint3x4(positions[i]);
+                    flat[3 * i] = p.x;
+                    flat[3 * i + 1] = p.y;
+                    flat[3 * i + 2] = p.z;
                 }
                 _cloth = Cloth.CreateMesh(_world, desc, flat, triangles, WeldDistance);
             }
@@ -418,19 +533,83 @@ namespace Drape
             _vertices = new NativeArray<DrapeVertex>(positions.Length, Allocator.Persistent);
             _paramsDirty = true;
             _pinsDirty = true;
-            _asleep = false;
+            _sleepDirty = true;
+            _sentColliders = 0;
+            _collidersUnsupported = false;
+            _warnedTruncated = false;
+            _lastStats = default;
             transform.hasChanged = false;
             ApplyPins();
             ApplyParams();
-            WriteMesh();
+            if (ActiveBackend == Drape.Core.Backend.Gles)
+            {
+                InitGpuOutput(positions);
+            }
+            else
+            {
+                ApplySleep();
+                if (_worldSpace) PushOwner(); // the first call only records the owner's pose
+                WriteMesh();
+            }
+        }
+
+        /// <summary>GPU path (compile-checked against the Unity stand-ins only; not run in Unity yet).
+        /// Stream 0's layout is fixed above (position + normal, Float32, 24 bytes) and the mesh is
+        /// dynamic; the rest shape is uploaded once, the GL buffer name fetched once (it syncs with the
+        /// render thread), and the native side writes that buffer at every render event.</summary>
+        private void InitGpuOutput(Vector3[] positions)
+        {
+            for (int i = 0; i < positions.Length; ++i)
+                _vertices[i] = new DrapeVertex { Position = positions[i], Normal = new Vector3(0f, 0f, 1f) };
+            _mesh.SetVertexBufferData(_vertices, 0, 0, positions.Length, 0,
+                                      MeshUpdateFlags.DontValidateIndices | MeshUpdateFlags.DontRecalculateBounds);
+            // GPU writes are invisible to Unity's bounds: cover every pose the cloth can reach
+            // (its rest box grown by its own diagonal on each side).
+            Vector3 min = positions[0], max = min;
+            for (int i = 1; i < positions.Length; ++i)
+            {
+                min = Vector3.Min(min, positions[i]);
+                max = Vector3.Max(max, positions[i]);
+            }
+            var bounds = new Bounds();
+            bounds.SetMinMax(min, max);
+            float reach = bounds.size.magnitude;
+            bounds.SetMinMax(min - Vector3.one * reach, max + Vector3.one * reach);
+            _mesh.bounds = bounds;
+            // Make sure the GPU buffer exists before asking for its name (defensive; see unity-notes §1).
+            _mesh.UploadMeshData(false);
+            _glBuffer = (uint)(ulong)_mesh.GetNativeVertexBufferPtr(0).ToInt64();
+            _cloth.SetOutputBuffer(_glBuffer, s_layout);
+        }
+
+        private void LateUpdate()
+        {
+            // One render event per frame runs every GLES cloth's recorded GL work on the render thread.
+            if (_cloth != null && ActiveBackend == Drape.Core.Backend.Gles) DrapeSimulation.IssueRenderEvent();
         }
 
         private void Release()
         {
             if (_cloth != null)
             {
+                if (_glBuffer != 0)
+                {
+                    // Stop writing the mesh's buffer before the mesh goes: both are recorded, and the
+                    // render event issued here runs them on the render thread ahead of the mesh's
+                    // destruction (Unity keeps render-thread commands in order).
+                    try
+                    {
+                        _cloth.SetOutputBuffer(0, s_layout);
+                    }
+                    catch (DrapeException e)
+                    {
+                        Debug.LogException(e, this);
+                    }
+                }
                 _cloth.Dispose();
                 _cloth = null;
+                if (_glBuffer != 0) DrapeSimulation.IssueRenderEvent(force: true);
+                _glBuffer = 0;
             }
             if (_world != null)
             {
@@ -455,8 +634,13 @@ namespace Drape
             p.Model = Model;
             p.Stiffness = new GroupValues(StructuralStiffness, ShearStiffness, BendStiffness);
             p.Damping = Damping;
-            Vector3 g = transform.InverseTransformDirection(UseUnityGravity ? Physics.gravity : Gravity);
-            Vector3 w = transform.InverseTransformDirection(Wind);
+            Vector3 g = UseUnityGravity ? Physics.gravity : Gravity;
+            Vector3 w = Wind;
+            if (!_worldSpace)
+            {
+                g = transform.InverseTransformDirection(g);
+                w = transform.InverseTransformDirection(w);
+            }
             p.Gravity = new Float3(g.x, g.y, g.z);
             p.Wind = new Float3(w.x, w.y, w.z);
             p.AirDrag = AirDrag;
@@ -478,9 +662,11 @@ namespace Drape
                 _pins = new Drape.Core.Pin[n];
             }
             SelectPins();
+            // World space: pins at the rest shape as the owner holds it now; the owner moves them later.
+            Matrix4x4 toSim = _worldSpace ? transform.localToWorldMatrix : Matrix4x4.identity;
             for (int k = 0; k < _pinCount; ++k)
             {
-                Vector3 p = _restPositions[_pinnedIndices[k]];
+                Vector3 p = toSim.MultiplyPoint3x4(_restPositions[_pinnedIndices[k]]);
                 _pins[k] = new Drape.Core.Pin(_pinnedIndices[k], new Float3(p.x, p.y, p.z));
             }
             if (_pinCount > 0) _cloth.SetPins(new Span<Drape.Core.Pin>(_pins, 0, _pinCount));

@@ -1,117 +1,165 @@
 using System;
 using System.Collections.Generic;
+using Drape.Core;
 using UnityEngine;
 
 namespace Drape
 {
-    /// <summary>Kinds of collider shapes a cloth can register.</summary>
-    public enum DrapeColliderKind
-    {
-        Sphere = 0,
-        Capsule = 1,
-        Box = 2,
-        Plane = 3,
-    }
-
-    /// <summary>One collider in the cloth's local (simulation) space: what will be pushed to the
-    /// native side in one call per frame. AWAITS NATIVE API: drape.h has no collider function yet
-    /// (a later issue adds it); this layout is the C# side's proposal, to be mirrored by then.</summary>
-    [Serializable]
-    public struct DrapeColliderShape
-    {
-        public DrapeColliderKind Kind;
-        /// <summary>Sphere/capsule: centre; box: centre; plane: a point on the plane.</summary>
-        public Vector3 Center;
-        /// <summary>Sphere and capsule radius (m).</summary>
-        public float Radius;
-        /// <summary>Capsule: half the segment between the sphere centres, along Axis (m).</summary>
-        public float HalfHeight;
-        /// <summary>Capsule axis / plane normal (unit).</summary>
-        public Vector3 Axis;
-        /// <summary>Box half extents (m) along the box's rotated axes.</summary>
-        public Vector3 HalfExtents;
-        public Quaternion Rotation;
-    }
-
-    /// <summary>Collects Unity's own colliders into <see cref="DrapeColliderShape"/>s, relative to a
-    /// cloth's transform, into a preallocated array (no allocation per frame).</summary>
+    /// <summary>Unity's own colliders (SphereCollider, CapsuleCollider, BoxCollider) and planes a
+    /// cloth collides with. <see cref="Gather"/> turns them into drape_collider records in the cloth's
+    /// simulation space, in a preallocated array (no allocation per frame), for one
+    /// drape_cloth_set_colliders call per frame.</summary>
     [Serializable]
     public sealed class DrapeColliderSet
     {
-        [Tooltip("SphereCollider, CapsuleCollider or BoxCollider components the cloth collides with.")]
-        public List<Collider> Colliders = new List<Collider>();
+        [Tooltip("SphereCollider, CapsuleCollider or BoxCollider components the cloth collides with " +
+                 "(other collider types are skipped). At most 64 colliders and planes in all.")]
+        public List<UnityEngine.Collider> Colliders = new List<UnityEngine.Collider>();
 
-        [Tooltip("Infinite planes: each Transform's position is on the plane, its up (+Y) is the normal.")]
+        [Tooltip("Infinite planes: each Transform's position is on the plane, its up (+Y) points to the free side.")]
         public List<Transform> Planes = new List<Transform>();
 
-        private DrapeColliderShape[] _shapes = new DrapeColliderShape[0];
+        [Tooltip("Distance kept between the cloth and every collider surface, metres (cloth thickness plus skin).")]
+        [Range(0f, 0.1f)] public float Margin = 0.005f;
 
-        /// <summary>Shapes gathered by the last <see cref="Gather"/>.</summary>
+        [Tooltip("Coulomb friction between the cloth and the colliders; 0 = frictionless.")]
+        [Range(0f, 2f)] public float Friction = 0.5f;
+
+        // Capsule: drape's segment runs along local y; Unity's along x, y or z (direction 0, 1, 2).
+        private static readonly Quaternion s_yToX = new Quaternion(0f, 0f, -0.70710677f, 0.70710677f);
+        private static readonly Quaternion s_yToZ = new Quaternion(0.70710677f, 0f, 0f, 0.70710677f);
+
+        private readonly Drape.Core.Collider[] _records = new Drape.Core.Collider[Cloth.MaxColliders];
+
+        /// <summary>Records filled by the last <see cref="Gather"/>.</summary>
         public int Count { get; private set; }
 
-        public DrapeColliderShape[] Shapes => _shapes;
+        /// <summary>True if the last Gather had to drop colliders beyond <see cref="Cloth.MaxColliders"/>.</summary>
+        public bool Truncated { get; private set; }
 
-        /// <summary>Fills <see cref="Shapes"/> in the space of <paramref name="simulationSpace"/>.
-        /// Grows the array only when colliders were added. Unsupported collider types and disabled
-        /// colliders are skipped.</summary>
+        /// <summary>The records of the last <see cref="Gather"/> (the first <see cref="Count"/>).</summary>
+        public Span<Drape.Core.Collider> Records => new Span<Drape.Core.Collider>(_records, 0, Count);
+
+        /// <summary>Fills <see cref="Records"/> with the current transforms, in the space of
+        /// <paramref name="simulationSpace"/> (null: world space). Disabled, missing, duplicate and
+        /// unsupported colliders are skipped. The simulation space should be uniformly scaled
+        /// (sizes are divided by its mean scale). Ids are the components' instance ids, so each
+        /// collider's motion from the previous frame is swept by the native side.</summary>
         public void Gather(Transform simulationSpace)
         {
-            int needed = Colliders.Count + Planes.Count;
-            if (_shapes.Length < needed) _shapes = new DrapeColliderShape[needed];
-            Matrix4x4 toLocal = simulationSpace.worldToLocalMatrix;
-            Quaternion invRotation = Quaternion.Inverse(simulationSpace.rotation);
+            Matrix4x4 toSim = simulationSpace != null ? simulationSpace.worldToLocalMatrix : Matrix4x4.identity;
+            Quaternion invRotation = simulationSpace != null ? Quaternion.Inverse(simulationSpace.rotation) : Quaternion.identity;
+            float invScale = 1f;
+            if (simulationSpace != null)
+            {
+                Vector3 s = simulationSpace.lossyScale;
+                invScale = 3f / Mathf.Max(1e-6f, Mathf.Abs(s.x) + Mathf.Abs(s.y) + Mathf.Abs(s.z));
+            }
             int n = 0;
+            Truncated = false;
             for (int i = 0; i < Colliders.Count; ++i)
             {
-                Collider c = Colliders[i];
-                if (c == null || !c.enabled) continue;
+                UnityEngine.Collider c = Colliders[i];
+                if (c == null || !c.enabled || !c.gameObject.activeInHierarchy) continue;
+                if (n == _records.Length)
+                {
+                    Truncated = true;
+                    break;
+                }
+                uint id = unchecked((uint)c.GetInstanceID());
+                if (Contains(n, id)) continue;
                 Transform t = c.transform;
                 Vector3 scale = t.lossyScale;
-                var s = new DrapeColliderShape { Rotation = invRotation * t.rotation };
+                float ax = Mathf.Abs(scale.x), ay = Mathf.Abs(scale.y), az = Mathf.Abs(scale.z);
+                Quaternion rotation = invRotation * t.rotation;
+                Vector3 center, size;
+                ColliderShape shape;
                 if (c is SphereCollider sphere)
                 {
-                    s.Kind = DrapeColliderKind.Sphere;
-                    s.Center = toLocal.MultiplyPoint3x4(t.TransformPoint(sphere.center));
-                    s.Radius = sphere.radius * Mathf.Max(Mathf.Abs(scale.x), Mathf.Max(Mathf.Abs(scale.y), Mathf.Abs(scale.z)));
+                    shape = ColliderShape.Sphere;
+                    center = t.TransformPoint(sphere.center);
+                    size = new Vector3(sphere.radius * Mathf.Max(ax, Mathf.Max(ay, az)) * invScale, 0f, 0f);
                 }
                 else if (c is CapsuleCollider capsule)
                 {
-                    s.Kind = DrapeColliderKind.Capsule;
-                    s.Center = toLocal.MultiplyPoint3x4(t.TransformPoint(capsule.center));
-                    Vector3 axis = capsule.direction == 0 ? Vector3.right : capsule.direction == 1 ? Vector3.up : Vector3.forward;
-                    s.Axis = toLocal.MultiplyVector(t.TransformDirection(axis)).normalized;
-                    float axisScale = Mathf.Abs(capsule.direction == 0 ? scale.x : capsule.direction == 1 ? scale.y : scale.z);
-                    float radiusScale = capsule.direction == 0 ? Mathf.Max(Mathf.Abs(scale.y), Mathf.Abs(scale.z))
-                                      : capsule.direction == 1 ? Mathf.Max(Mathf.Abs(scale.x), Mathf.Abs(scale.z))
-                                                               : Mathf.Max(Mathf.Abs(scale.x), Mathf.Abs(scale.y));
-                    s.Radius = capsule.radius * radiusScale;
-                    s.HalfHeight = Mathf.Max(0f, capsule.height * axisScale * 0.5f - s.Radius);
+                    shape = ColliderShape.Capsule;
+                    center = t.TransformPoint(capsule.center);
+                    float axisScale, radiusScale;
+                    if (capsule.direction == 0)
+                    {
+                        axisScale = ax;
+                        radiusScale = Mathf.Max(ay, az);
+                        rotation = rotation * s_yToX;
+                    }
+                    else if (capsule.direction == 2)
+                    {
+                        axisScale = az;
+                        radiusScale = Mathf.Max(ax, ay);
+                        rotation = rotation * s_yToZ;
+                    }
+                    else
+                    {
+                        axisScale = ay;
+                        radiusScale = Mathf.Max(ax, az);
+                    }
+                    float radius = capsule.radius * radiusScale;
+                    // drape.h: half length of the segment between the cap centres = max(0, height/2 - radius).
+                    float halfLength = Mathf.Max(0f, capsule.height * axisScale * 0.5f - radius);
+                    size = new Vector3(radius * invScale, halfLength * invScale, 0f);
                 }
                 else if (c is BoxCollider box)
                 {
-                    s.Kind = DrapeColliderKind.Box;
-                    s.Center = toLocal.MultiplyPoint3x4(t.TransformPoint(box.center));
-                    s.HalfExtents = Vector3.Scale(box.size, scale) * 0.5f;
+                    shape = ColliderShape.Box;
+                    center = t.TransformPoint(box.center);
+                    size = new Vector3(Mathf.Abs(box.size.x) * ax, Mathf.Abs(box.size.y) * ay, Mathf.Abs(box.size.z) * az) *
+                           (0.5f * invScale);
                 }
                 else
                 {
                     continue; // MeshCollider, TerrainCollider...: not supported
                 }
-                _shapes[n++] = s;
+                _records[n++] = new Drape.Core.Collider
+                {
+                    StructSize = SizeOf.Collider,
+                    Shape = shape,
+                    Id = id,
+                    Position = DrapeConvert.ToDrape(toSim.MultiplyPoint3x4(center)),
+                    Rotation = DrapeConvert.ToDrape(rotation),
+                    Size = DrapeConvert.ToDrape(size),
+                    Margin = Margin * invScale,
+                    Friction = Friction,
+                };
             }
             for (int i = 0; i < Planes.Count; ++i)
             {
                 Transform t = Planes[i];
-                if (t == null) continue;
-                _shapes[n++] = new DrapeColliderShape
+                if (t == null || !t.gameObject.activeInHierarchy) continue;
+                if (n == _records.Length)
                 {
-                    Kind = DrapeColliderKind.Plane,
-                    Center = toLocal.MultiplyPoint3x4(t.position),
-                    Axis = toLocal.MultiplyVector(t.up).normalized,
-                    Rotation = invRotation * t.rotation,
+                    Truncated = true;
+                    break;
+                }
+                uint id = unchecked((uint)t.GetInstanceID());
+                if (Contains(n, id)) continue;
+                _records[n++] = new Drape.Core.Collider
+                {
+                    StructSize = SizeOf.Collider,
+                    Shape = ColliderShape.Plane,
+                    Id = id,
+                    Position = DrapeConvert.ToDrape(toSim.MultiplyPoint3x4(t.position)),
+                    Rotation = DrapeConvert.ToDrape(invRotation * t.rotation),
+                    Margin = Margin * invScale,
+                    Friction = Friction,
                 };
             }
             Count = n;
+        }
+
+        private bool Contains(int n, uint id)
+        {
+            for (int k = 0; k < n; ++k)
+                if (_records[k].Id == id) return true;
+            return false;
         }
     }
 }

@@ -1,3 +1,4 @@
+using System;
 using Drape.Core;
 using UnityEngine;
 
@@ -10,6 +11,26 @@ namespace Drape
     {
         private static World s_world;
         private static int s_users;
+        private static IntPtr s_renderCallback;
+        private static int s_renderEventId;
+        private static int s_renderEventFrame = -1;
+
+        /// <summary>Issues the native render event (drape_unity_render_event) through
+        /// GL.IssuePluginEvent, once per frame unless <paramref name="force"/>: it runs every GLES
+        /// cloth's recorded GL work (steps, output into the mesh buffers, releases) on the render
+        /// thread. The callback is fetched once.</summary>
+        public static void IssueRenderEvent(bool force = false)
+        {
+            int frame = Time.frameCount;
+            if (!force && frame == s_renderEventFrame) return;
+            if (s_renderCallback == IntPtr.Zero)
+            {
+                World.GetUnityRenderEvent(out s_renderCallback, out s_renderEventId);
+                if (s_renderCallback == IntPtr.Zero) return; // GL.IssuePluginEvent throws on a null callback
+            }
+            s_renderEventFrame = frame;
+            GL.IssuePluginEvent(s_renderCallback, s_renderEventId);
+        }
 
         /// <summary>Takes a reference on the shared world (creating it if needed).</summary>
         public static World Acquire()
@@ -37,6 +58,7 @@ namespace Drape
             if (s_world != null) s_world.Dispose();
             s_world = null;
             s_users = 0;
+            s_renderEventFrame = -1; // the callback pointer stays valid: native libraries are not unloaded
         }
 
 #if UNITY_EDITOR

@@ -1,6 +1,7 @@
 #if DRAPE_HAS_INPUTSYSTEM && ENABLE_INPUT_SYSTEM
 #define DRAPE_NEW_INPUT
 #endif
+using Drape.Core;
 using UnityEngine;
 #if DRAPE_NEW_INPUT
 using UnityEngine.InputSystem;
@@ -8,25 +9,23 @@ using UnityEngine.InputSystem;
 
 namespace Drape
 {
-    /// <summary>What one frame of pointer input hands to the cloth's drag (paper eq. 9): the touch
-    /// point and its motion in screen pixels (origin bottom-left) plus the camera and object
-    /// matrices (column-major, OpenGL convention, as drape.h will take them).</summary>
-    public struct DrapeDragInput
+    /// <summary>How a finger moves the cloth.</summary>
+    public enum DrapeTouchMode
     {
-        public bool Active;
-        public Vector2 ScreenPoint;
-        public Vector2 ScreenDelta;
-        public Rect PixelRect;
-        public Matrix4x4 WorldToCamera;
-        public Matrix4x4 Projection;
-        public Matrix4x4 LocalToWorld;
+        /// <summary>The paper's touch drag (eq. 9): vertices near the finger follow its motion with a
+        /// Gaussian falloff in screen space (drape_cloth_drag). Works on every backend.</summary>
+        Drag = 0,
+        /// <summary>Pick-and-hold: the vertex nearest the finger is held under it as a moving pin
+        /// until release (drape_cloth_grab). CPU backends only.</summary>
+        Grab = 1,
     }
 
-    /// <summary>Reads touch (or the mouse, in the editor and on desktop) and prepares the drag input
-    /// of a <see cref="DrapeCloth"/> each frame: from the Input System when the package is installed
-    /// and enabled, else from the legacy Input Manager.
-    /// AWAITS NATIVE API: drape.h has no drag call yet; <see cref="Current"/> is filled every frame
-    /// and not sent anywhere until it does. Nothing moves the cloth yet.</summary>
+    /// <summary>Moves a <see cref="DrapeCloth"/> with touch (or the mouse, in the editor and on
+    /// desktop): the Input System when the package is installed and enabled, else the legacy Input
+    /// Manager. Each frame it passes the touch point, the finger's motion, the cloth's
+    /// simulation-to-world matrix and the camera's view and projection matrices (column-major,
+    /// OpenGL convention: Camera.projectionMatrix) and viewport to the native side. The drag applies
+    /// over the cloth's next step. No allocation per frame.</summary>
     [RequireComponent(typeof(DrapeCloth))]
     [AddComponentMenu("Drape/Drape Touch Drag")]
     public sealed class DrapeTouchDrag : MonoBehaviour
@@ -34,45 +33,104 @@ namespace Drape
         [Tooltip("Camera the touches are seen through; Camera.main when empty.")]
         public Camera Camera;
 
-        [Tooltip("Drag strength (paper eq. 9 gain).")]
-        [Range(0f, 10f)] public float Strength = 1f;
+        [Tooltip("Drag: vertices near the finger follow it (paper eq. 9). Grab: the nearest vertex is held under the finger.")]
+        public DrapeTouchMode Mode = DrapeTouchMode.Drag;
 
-        [Tooltip("Falloff radius around the touch, in metres on the cloth (eq. 9, decreasing with distance).")]
-        [Range(0.01f, 2f)] public float Radius = 0.2f;
+        [Tooltip("Drag: eq. 9's A. With sigma it sets the radius within which vertices follow the finger fully: sqrt(2 sigma ln A) px.")]
+        [Range(1f, 1000f)] public float Amplitude = 200f;
 
-        /// <summary>True once the native drag API exists; until then nothing is sent.</summary>
-        public const bool NativeDragAvailable = false;
+        [Tooltip("Drag: eq. 9's sigma, px^2 (a variance). 300 px^2 with A = 200: full follow within 56 px, none beyond ~80 px.")]
+        [Range(10f, 20000f)] public float Sigma = 300f;
 
-        private DrapeDragInput _current;
+        [Tooltip("Grab: how far from the finger (px) a vertex may be picked.")]
+        [Range(1f, 200f)] public float PickRadius = 40f;
+
+        private const uint GrabId = 0;
+
+        private DrapeCloth _cloth;
+        private readonly Drape.Core.Touch[] _touches = new Drape.Core.Touch[1];
         private Vector2 _lastPoint;
         private bool _wasActive;
+        private bool _holding;
 
-        /// <summary>This frame's drag input.</summary>
-        public DrapeDragInput Current => _current;
+        /// <summary>The vertex held in Grab mode, or <see cref="Cloth.NoVertex"/>.</summary>
+        public uint HeldVertex { get; private set; } = Cloth.NoVertex;
+
+        private void OnEnable() => _cloth = GetComponent<DrapeCloth>();
+
+        private void OnDisable()
+        {
+            Release();
+            _wasActive = false;
+        }
 
         private void Update()
         {
+            Cloth cloth = _cloth != null ? _cloth.NativeCloth : null;
             Camera cam = Camera != null ? Camera : Camera.main;
-            bool active = ReadPointer(out Vector2 point);
-            _current.Active = active && cam != null;
-            _current.ScreenPoint = point;
-            _current.ScreenDelta = active && _wasActive ? point - _lastPoint : Vector2.zero;
+            bool active = ReadPointer(out Vector2 screen) && cam != null && cloth != null;
+            if (!active)
+            {
+                Release();
+                _wasActive = false;
+                return;
+            }
+
+            // drape_view: pixels relative to the camera's viewport, origin bottom-left.
+            Rect rect = cam.pixelRect;
+            var point = new Vector2(screen.x - rect.x, screen.y - rect.y);
+            var view = new View
+            {
+                World = DrapeConvert.ToDrape(_cloth.SimulationToWorld),
+                ViewMatrix = DrapeConvert.ToDrape(cam.worldToCameraMatrix),
+                Projection = DrapeConvert.ToDrape(cam.projectionMatrix), // OpenGL convention, as drape.h wants
+                Viewport = new Float2(rect.width, rect.height),
+            };
+            try
+            {
+                if (Mode == DrapeTouchMode.Grab && _cloth.ActiveBackend != Drape.Core.Backend.Gles)
+                {
+                    if (!_wasActive)
+                    {
+                        HeldVertex = cloth.Grab(view, GrabId, new Float2(point.x, point.y), PickRadius);
+                        _holding = HeldVertex != Cloth.NoVertex;
+                    }
+                    else if (_holding && point != _lastPoint)
+                    {
+                        cloth.GrabMove(view, GrabId, new Float2(point.x, point.y));
+                    }
+                }
+                else if (_wasActive && point != _lastPoint)
+                {
+                    _touches[0] = new Drape.Core.Touch
+                    {
+                        Position = new Float2(_lastPoint.x, _lastPoint.y), // where the finger was
+                        Motion = new Float2(point.x - _lastPoint.x, point.y - _lastPoint.y),
+                        Amplitude = Amplitude,
+                        Sigma = Sigma,
+                    };
+                    cloth.Drag(view, _touches);
+                }
+            }
+            catch (DrapeException e)
+            {
+                Debug.LogException(e, this);
+                enabled = false;
+            }
             _lastPoint = point;
-            _wasActive = active;
-            if (cam != null)
-            {
-                _current.PixelRect = cam.pixelRect;
-                _current.WorldToCamera = cam.worldToCameraMatrix;
-                _current.Projection = cam.projectionMatrix; // OpenGL convention, right for unprojection
-            }
-            _current.LocalToWorld = transform.localToWorldMatrix;
-            if (_current.Active && _current.ScreenDelta != Vector2.zero)
-            {
-                var cloth = GetComponent<DrapeCloth>();
-                if (cloth != null) cloth.WakeUp();
-            }
+            _wasActive = true;
         }
 
+        private void Release()
+        {
+            if (!_holding) return;
+            _holding = false;
+            HeldVertex = Cloth.NoVertex;
+            Cloth cloth = _cloth != null ? _cloth.NativeCloth : null;
+            if (cloth != null && !cloth.IsDisposed) cloth.GrabRelease(GrabId);
+        }
+
+        /// <summary>The primary touch, else the left mouse button, in screen pixels (origin bottom-left).</summary>
         private static bool ReadPointer(out Vector2 point)
         {
             point = Vector2.zero;

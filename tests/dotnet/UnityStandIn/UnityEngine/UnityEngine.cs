@@ -17,6 +17,7 @@ namespace UnityEngine
         public static void Destroy(Object obj) => throw StandIn.No;
         public static void DestroyImmediate(Object obj) => throw StandIn.No;
         public static T FindObjectOfType<T>() where T : Object => throw StandIn.No;
+        public int GetInstanceID() => throw StandIn.No;
         public static bool operator ==(Object a, Object b) => ReferenceEquals(a, b);
         public static bool operator !=(Object a, Object b) => !ReferenceEquals(a, b);
         public static implicit operator bool(Object exists) => !ReferenceEquals(exists, null);
@@ -41,6 +42,11 @@ namespace UnityEngine
         public GameObject(string name) => throw StandIn.No;
         public T AddComponent<T>() where T : Component => throw StandIn.No;
         public Transform transform => throw StandIn.No;
+        public bool activeInHierarchy => throw StandIn.No;
+        public string tag { get => throw StandIn.No; set => throw StandIn.No; }
+        public void SetActive(bool value) => throw StandIn.No;
+        public static GameObject CreatePrimitive(PrimitiveType type) => throw StandIn.No;
+        public T GetComponent<T>() => throw StandIn.No;
     }
 
     public class Transform : Component, IEnumerable
@@ -49,6 +55,8 @@ namespace UnityEngine
         public Vector3 position { get => throw StandIn.No; set => throw StandIn.No; }
         public Quaternion rotation { get => throw StandIn.No; set => throw StandIn.No; }
         public Vector3 lossyScale => throw StandIn.No;
+        public Vector3 localScale { get => throw StandIn.No; set => throw StandIn.No; }
+        public void LookAt(Vector3 worldPosition) => throw StandIn.No;
         public Vector3 up { get => throw StandIn.No; set => throw StandIn.No; }
         public Matrix4x4 worldToLocalMatrix => throw StandIn.No;
         public Matrix4x4 localToWorldMatrix => throw StandIn.No;
@@ -66,9 +74,21 @@ namespace UnityEngine
     public class Renderer : Component
     {
         public bool isVisible => throw StandIn.No;
+        public Material sharedMaterial { get => throw StandIn.No; set => throw StandIn.No; }
     }
 
     public sealed class MeshRenderer : Renderer { }
+
+    public class Material : Object { }
+
+    public enum PrimitiveType { Sphere = 0, Capsule = 1, Cylinder = 2, Cube = 3, Plane = 4, Quad = 5 }
+
+    public enum LightType { Spot = 0, Directional = 1, Point = 2 }
+
+    public sealed class Light : Behaviour
+    {
+        public LightType type { get => throw StandIn.No; set => throw StandIn.No; }
+    }
 
     public class Collider : Component
     {
@@ -162,8 +182,10 @@ namespace UnityEngine
     public struct Quaternion
     {
         public float x, y, z, w;
+        public Quaternion(float x, float y, float z, float w) { this.x = x; this.y = y; this.z = z; this.w = w; }
         public static Quaternion identity => throw StandIn.No;
         public static Quaternion Inverse(Quaternion rotation) => throw StandIn.No;
+        public static Quaternion Euler(float x, float y, float z) => throw StandIn.No;
         public static Quaternion operator *(Quaternion a, Quaternion b) => throw StandIn.No;
     }
 
@@ -207,6 +229,16 @@ namespace UnityEngine
         public Matrix4x4 projectionMatrix { get => throw StandIn.No; set => throw StandIn.No; }
     }
 
+    public static class SystemInfo
+    {
+        public static Rendering.GraphicsDeviceType graphicsDeviceType => throw StandIn.No;
+    }
+
+    public static class GL
+    {
+        public static void IssuePluginEvent(IntPtr callback, int eventID) => throw StandIn.No;
+    }
+
     public static class Physics
     {
         public static Vector3 gravity { get => throw StandIn.No; set => throw StandIn.No; }
@@ -217,6 +249,8 @@ namespace UnityEngine
         public static float deltaTime => throw StandIn.No;
         public static float fixedDeltaTime { get => throw StandIn.No; set => throw StandIn.No; }
         public static float unscaledTime => throw StandIn.No;
+        public static float time => throw StandIn.No;
+        public static int frameCount => throw StandIn.No;
     }
 
     public static class Application
@@ -238,6 +272,9 @@ namespace UnityEngine
         public static float Min(float a, float b) => throw StandIn.No;
         public static float Abs(float f) => throw StandIn.No;
         public static float Lerp(float a, float b, float t) => throw StandIn.No;
+        public static float Sqrt(float f) => throw StandIn.No;
+        public static float PerlinNoise(float x, float y) => throw StandIn.No;
+        public static float Clamp01(float value) => throw StandIn.No;
     }
 
     public enum TouchPhase { Began = 0, Moved = 1, Stationary = 2, Ended = 3, Canceled = 4 }
@@ -345,6 +382,11 @@ namespace UnityEngine.Rendering
     }
 
     public enum IndexFormat { UInt16 = 0, UInt32 = 1 }
+
+    public enum GraphicsDeviceType
+    {
+        Direct3D11 = 2, Null = 4, OpenGLES2 = 8, OpenGLES3 = 11, Metal = 16, OpenGLCore = 17, Direct3D12 = 18, Vulkan = 21,
+    }
 
     public struct SubMeshDescriptor
     {
