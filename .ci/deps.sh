@@ -8,6 +8,7 @@ packages=(
   glslang-tools libstb-dev python3-matplotlib
   imagemagick  # issue 3: demo GIFs
   clang-14 libclang-rt-14-dev g++-aarch64-linux-gnu qemu-user  # issue 7: sanitizers, libFuzzer, arm64 under qemu
+  g++-mingw-w64-x86-64  # issue 4: Windows x86_64 drape.dll for the Unity package (npm run pack)
 )
 missing=()
 for p in "${packages[@]}"; do

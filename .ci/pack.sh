@@ -5,6 +5,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash .ci/build.sh release
+# Windows x86_64 drape.dll, cross-compiled with mingw-w64 (GLES off; see plugin-native/cmake/x86_64-w64-mingw32.cmake).
+bash .ci/build.sh windows-x64
+# Android arm64-v8a needs the NDK (not installable here): built only where ANDROID_NDK_HOME is set.
+if [ -n "${ANDROID_NDK_HOME:-}" ]; then bash .ci/build.sh android-arm64; fi
 
 stage=build/unity-package-stage/package
 rm -rf build/unity-package-stage
