@@ -390,6 +390,35 @@ DRAPE_API drape_status drape_owner_default(drape_owner* out_owner);
  *  pins and cloth by the change since the previous call (see drape_owner). Wakes on change. */
 DRAPE_API drape_status drape_cloth_set_owner(drape_cloth* cloth, const drape_owner* owner);
 
+/* C# twin: Drape.Core.SelfCollisionDesc. Self-collision (issue 5): particles of the cloth that
+ * are not neighbours in the rest mesh are kept at least `thickness` apart, so a cloth folding onto
+ * itself does not pass through itself. Resolved once per substep (after the solve, before
+ * colliders) over candidate pairs from a spatial hash, rebuilt only when the cloth has moved
+ * enough to need it; pairs that share a spring or lie closer than 1.5 x thickness in the rest mesh
+ * never collide, and a pair that passed through each other within a substep is pushed back to the
+ * side it came from. It works on particles: with a thickness well below the particle spacing a
+ * particle can slip through the middle of a grid cell of another layer; the particle spacing is a
+ * good thickness. A particle moving more than one thickness per substep relative to the cloth's
+ * mean motion may pass through (raise substeps). Off by default: a cloth without it does no extra
+ * work. CPU backends only (GLES: not yet). */
+typedef struct drape_self_collision_desc {
+    uint32_t struct_size;
+    uint32_t enabled;     /**< 1 = on, 0 = off (default) */
+    float thickness;      /**< m, distance kept between non-neighbour particles: > 0 when enabled
+                               (>= 0 when not), at most 1/4 of the diagonal of the cloth's rest
+                               bounding box. Typical: the particle spacing. Default 0 */
+    float friction;       /**< Coulomb coefficient between layers in [0, 10]; 0 = frictionless
+                               (default). Typical 0.1-0.5 */
+} drape_self_collision_desc;
+
+/** Turns self-collision on or off (see drape_self_collision_desc); takes effect at the next step.
+ *  Errors: NULL_POINTER, STRUCT_SIZE, NOT_FINITE (thickness, friction), INVALID_ARGUMENT (enabled
+ *  not 0/1, thickness or friction out of range), BACKEND_UNAVAILABLE (enabling on a GLES cloth;
+ *  turning it off there is accepted and does nothing). A change wakes a sleeping cloth. */
+DRAPE_API drape_status drape_cloth_set_self_collision(drape_cloth* cloth, const drape_self_collision_desc* desc);
+/** Current setting (out_desc->struct_size must be set). A new cloth: enabled 0, thickness 0, friction 0. */
+DRAPE_API drape_status drape_cloth_get_self_collision(const drape_cloth* cloth, drape_self_collision_desc* out_desc);
+
 #ifdef __cplusplus
 }
 #endif

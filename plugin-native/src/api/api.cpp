@@ -774,3 +774,47 @@ drape_status drape_cloth_set_owner(drape_cloth* cloth, const drape_owner* owner)
 }
 
 }  // extern "C"
+
+// ---- issue 5: self-collision ------------------------------------------------------------------
+// Validation here; the state lives in core/self_collision.{h,cpp}.
+extern "C" {
+
+drape_status drape_cloth_set_self_collision(drape_cloth* cloth, const drape_self_collision_desc* desc) {
+    if (drape_status s = check_cloth(cloth)) return s;
+    DRAPE_CHECK_STRUCT(desc, drape_self_collision_desc);
+    DRAPE_REQUIRE(desc->enabled <= 1, DRAPE_ERROR_INVALID_ARGUMENT,
+                  "self-collision enabled is " + std::to_string(desc->enabled) + ", must be 0 or 1");
+    DRAPE_REQUIRE(std::isfinite(desc->thickness), DRAPE_ERROR_NOT_FINITE, "self-collision thickness is NaN or infinite");
+    DRAPE_REQUIRE(std::isfinite(desc->friction), DRAPE_ERROR_NOT_FINITE, "self-collision friction is NaN or infinite");
+    Cloth* c = as_cloth(cloth);
+    const float max_thickness = kSelfMaxThicknessFraction * c->topology().extent;
+    DRAPE_REQUIRE(desc->thickness >= 0 && desc->thickness <= max_thickness, DRAPE_ERROR_INVALID_ARGUMENT,
+                  "self-collision thickness " + std::to_string(desc->thickness) + " m must be in [0, " +
+                      std::to_string(max_thickness) + "] m (a quarter of the cloth's rest diagonal)");
+    DRAPE_REQUIRE(!desc->enabled || desc->thickness > 0, DRAPE_ERROR_INVALID_ARGUMENT,
+                  "self-collision thickness must be > 0 m when enabled");
+    DRAPE_REQUIRE(desc->friction >= 0 && desc->friction <= kMaxFriction, DRAPE_ERROR_INVALID_ARGUMENT,
+                  "self-collision friction must be in [0, 10]");
+    if (c->backend() == DRAPE_BACKEND_GLES) {
+        DRAPE_REQUIRE(!desc->enabled, DRAPE_ERROR_BACKEND_UNAVAILABLE,
+                      "self-collision is not implemented on the GLES backend yet: use a CPU or CPU_THREADED "
+                      "cloth, or leave it off");
+        return ok();  // off on GLES: nothing to do (it is never on there)
+    }
+    return guarded([&] {
+        c->set_self_collision(desc->enabled != 0, desc->thickness, desc->friction);
+        return ok();
+    });
+}
+
+drape_status drape_cloth_get_self_collision(const drape_cloth* cloth, drape_self_collision_desc* out_desc) {
+    if (drape_status s = check_cloth(cloth)) return s;
+    DRAPE_CHECK_STRUCT(out_desc, drape_self_collision_desc);
+    const SelfCollision& sc = as_cloth(cloth)->self_collision();
+    out_desc->enabled = sc.enabled ? 1 : 0;
+    out_desc->thickness = sc.thickness;
+    out_desc->friction = sc.friction;
+    return ok();
+}
+
+}  // extern "C"
