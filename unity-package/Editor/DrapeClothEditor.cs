@@ -78,6 +78,18 @@ namespace Drape.Editor
             }
             if (cloth.Backend == DrapeBackendChoice.Gpu && cloth.SleepThreshold > 0f)
                 list.Add("Sleeping, grabs and World space are CPU-only; the GPU backend ignores the sleep threshold.");
+            if (cloth.SelfCollision && cloth.Backend == DrapeBackendChoice.Gpu)
+                list.Add("Self-collision is CPU-only: the GPU backend refuses it (Auto picks the CPU while it is on).");
+            if (cloth.SelfCollision && cloth.Source == DrapeShapeSource.GeneratedGrid && cloth.Columns > 1 && cloth.Rows > 1)
+            {
+                float spacing = Mathf.Min(cloth.Size.x / (cloth.Columns - 1), cloth.Size.y / (cloth.Rows - 1));
+                if (cloth.SelfCollisionThickness < 0.5f * spacing)
+                    list.Add("Self-collision thickness " + cloth.SelfCollisionThickness.ToString("F3") + " m is under half the particle spacing (" +
+                             spacing.ToString("F3") + " m): layers can slip through each other. Use about the spacing.");
+                else if (cloth.SelfCollisionThickness > 3f * spacing)
+                    list.Add("Self-collision thickness " + cloth.SelfCollisionThickness.ToString("F3") + " m is several particle spacings (" +
+                             spacing.ToString("F3") + " m): folds will puff up. Use about the spacing.");
+            }
             if (cloth.Source == DrapeShapeSource.MeshFilterMesh)
             {
                 var filter = cloth.GetComponent<MeshFilter>();

@@ -188,6 +188,20 @@ namespace Drape
         [Tooltip("World space: a jump of the owner further than this (m) moves the cloth rigidly instead of stretching it.")]
         [Range(0.01f, 100f)] public float TeleportDistance = 1f;
 
+        [Header("Self-collision")]
+        [Tooltip("Keep the cloth from passing through itself where it folds or piles up. Costs extra work per " +
+                 "step while on (off: none). CPU backends only: Auto then picks the CPU, the GPU backend refuses it.")]
+        public bool SelfCollision = false;
+
+        [Tooltip("Distance (m) kept between parts of the cloth that are not neighbours. Use about the particle " +
+                 "spacing (generated grid: Size / (Columns - 1)): well below it, particles slip through the gaps " +
+                 "between another layer's particles; well above it, folds puff up. At most a quarter of the cloth's diagonal.")]
+        [Range(0.001f, 0.2f)] public float SelfCollisionThickness = 0.03f;
+
+        [Tooltip("Friction between layers of the cloth sliding on each other (Coulomb coefficient); 0 = frictionless. " +
+                 "Typical 0.1-0.5.")]
+        [Range(0f, 2f)] public float SelfCollisionFriction = 0.2f;
+
         [Header("Colliders")]
         [Tooltip("Unity colliders and planes the cloth collides with; their transforms are pushed every frame.")]
         public DrapeColliderSet Colliders = new DrapeColliderSet();
@@ -214,6 +228,9 @@ namespace Drape
         private bool _collidersUnsupported;
         private bool _warnedTruncated;
         private Stats _lastStats;
+        private SelfCollisionDesc _sentSelfCollision;    // what the native cloth has (a new cloth: off)
+        private SelfCollisionDesc _refusedSelfCollision; // the last setting refused (warned once)
+        private bool _selfCollisionRefused;
 
         // GPU path: the GL buffer name of stream 0, fetched once at init.
         private uint _glBuffer;
@@ -321,6 +338,7 @@ namespace Drape
                 if (_pinsDirty) ApplyPins();
                 if (_paramsDirty) ApplyParams();
                 if (_sleepDirty && !gpu) ApplySleep();
+                ApplySelfCollision();
                 if (_worldSpace) PushOwner();
                 PushColliders();
 
@@ -348,6 +366,42 @@ namespace Drape
             _sleepDirty = false;
             _cloth.SetSleep(Mathf.Max(0f, SleepThreshold), Mathf.Max(0f, SleepTime));
         }
+
+        /// <summary>Sends the self-collision fields when they changed (cheap when they did not, so
+        /// edits from the inspector or from scripts apply at the next step). In Local space the cloth
+        /// is simulated in the GameObject's units: the thickness (m) is divided by its mean scale. A
+        /// refused setting (thickness above a quarter of the cloth's diagonal, GPU backend) is
+        /// warned about once and leaves the previous one in place.</summary>
+        private void ApplySelfCollision()
+        {
+            float thickness = Mathf.Max(0f, SelfCollisionThickness);
+            if (!_worldSpace)
+            {
+                Vector3 sc = transform.lossyScale;
+                thickness *= 3f / Mathf.Max(1e-6f, Mathf.Abs(sc.x) + Mathf.Abs(sc.y) + Mathf.Abs(sc.z));
+            }
+            var desc = new SelfCollisionDesc(SelfCollision, thickness, Mathf.Min(10f, Mathf.Max(0f, SelfCollisionFriction)));
+            if (!desc.IsEnabled && !_sentSelfCollision.IsEnabled) return; // off either way: nothing to change
+            if (SameSelfCollision(desc, _sentSelfCollision) || (_selfCollisionRefused && SameSelfCollision(desc, _refusedSelfCollision))) return;
+            try
+            {
+                _cloth.SetSelfCollision(desc);
+                _sentSelfCollision = desc;
+                _selfCollisionRefused = false;
+            }
+            catch (DrapeException e)
+            {
+                _refusedSelfCollision = desc;
+                _selfCollisionRefused = true;
+                string hint = e.Status == Status.ErrorBackendUnavailable
+                    ? " Self-collision runs on the CPU backends only: set Backend to Auto or CPU and re-enable the component."
+                    : "";
+                Debug.LogWarning("Drape: " + name + ": self-collision not applied: " + e.NativeMessage + hint, this);
+            }
+        }
+
+        private static bool SameSelfCollision(SelfCollisionDesc a, SelfCollisionDesc b) =>
+            a.Enabled == b.Enabled && a.Thickness == b.Thickness && a.Friction == b.Friction;
 
         private void PushOwner()
         {
@@ -447,7 +501,8 @@ namespace Drape
                                      "with GLES and Local simulation space; running on the CPU.", this);
                     return cpu;
                 default:
-                    return GpuUsable() ? Drape.Core.Backend.Gles : cpu;
+                    // Self-collision is CPU-only: with it on, Auto stays on the CPU.
+                    return !SelfCollision && GpuUsable() ? Drape.Core.Backend.Gles : cpu;
             }
         }
 
@@ -538,9 +593,12 @@ namespace Drape
             _collidersUnsupported = false;
             _warnedTruncated = false;
             _lastStats = default;
+            _sentSelfCollision = default;
+            _selfCollisionRefused = false;
             transform.hasChanged = false;
             ApplyPins();
             ApplyParams();
+            ApplySelfCollision();
             if (ActiveBackend == Drape.Core.Backend.Gles)
             {
                 InitGpuOutput(positions);

@@ -61,6 +61,7 @@ namespace Drape.Tests
             new object[] { "drape_view", typeof(View) },
             new object[] { "drape_touch", typeof(Touch) },
             new object[] { "drape_owner", typeof(Owner) },
+            new object[] { "drape_self_collision_desc", typeof(SelfCollisionDesc) },
         };
 
         /// <summary>C# fields whose C name is not Snake(name): a member cannot share its struct's name.</summary>
@@ -131,6 +132,7 @@ namespace Drape.Tests
             Assert.That((long)SizeOf.View, Is.EqualTo(C["drape_view"]));
             Assert.That((long)SizeOf.Touch, Is.EqualTo(C["drape_touch"]));
             Assert.That((long)SizeOf.Owner, Is.EqualTo(C["drape_owner"]));
+            Assert.That((long)SizeOf.SelfCollisionDesc, Is.EqualTo(C["drape_self_collision_desc"]));
             Assert.That((long)Cloth.MaxColliders, Is.EqualTo(C["DRAPE_MAX_COLLIDERS"]));
         }
 

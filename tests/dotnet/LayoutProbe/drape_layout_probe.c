@@ -128,6 +128,12 @@ static const probe_entry k_entries[] = {
     FIELD(drape_owner, angular_inertia),
     FIELD(drape_owner, teleport_distance),
 
+    STRUCT(drape_self_collision_desc),
+    FIELD(drape_self_collision_desc, struct_size),
+    FIELD(drape_self_collision_desc, enabled),
+    FIELD(drape_self_collision_desc, thickness),
+    FIELD(drape_self_collision_desc, friction),
+
     {"DRAPE_MAX_COLLIDERS", DRAPE_MAX_COLLIDERS},
 
     ENUM(DRAPE_OK),

@@ -347,6 +347,39 @@ namespace Drape.Core
             }
         }
 
+        /// <summary>Turns self-collision on or off (see <see cref="SelfCollisionDesc"/>); takes effect at
+        /// the next step and wakes a sleeping cloth. StructSize is set here. Bad input (Enabled not 0/1,
+        /// thickness or friction out of range or not finite) throws and leaves the setting unchanged;
+        /// enabling it on a GLES cloth throws with ErrorBackendUnavailable (turning it off is accepted).
+        /// Allocates nothing.</summary>
+        public void SetSelfCollision(SelfCollisionDesc desc)
+        {
+            desc.StructSize = SizeOf.SelfCollisionDesc;
+            lock (_sync)
+            {
+                Status s = NativeMethods.drape_cloth_set_self_collision(_handle, ref desc);
+                if (s != Status.Ok) NativeMethods.Check(s, "drape_cloth_set_self_collision");
+            }
+        }
+
+        /// <summary>Turns self-collision on or off: non-neighbour particles are kept
+        /// <paramref name="thickness"/> m apart (&gt; 0 when enabled; the particle spacing is a good
+        /// value), with Coulomb <paramref name="friction"/> in [0, 10] between layers.</summary>
+        public void SetSelfCollision(bool enabled, float thickness, float friction = 0f) =>
+            SetSelfCollision(new SelfCollisionDesc(enabled, thickness, friction));
+
+        /// <summary>The current self-collision setting. A new cloth: off, thickness 0, friction 0.</summary>
+        public SelfCollisionDesc GetSelfCollision()
+        {
+            lock (_sync)
+            {
+                var desc = new SelfCollisionDesc { StructSize = SizeOf.SelfCollisionDesc };
+                Status s = NativeMethods.drape_cloth_get_self_collision(_handle, ref desc);
+                if (s != Status.Ok) NativeMethods.Check(s, "drape_cloth_get_self_collision");
+                return desc;
+            }
+        }
+
         /// <summary>GLES cloths: after every step the GPU writes positions and/or normals of every vertex
         /// into GL buffer <paramref name="glBuffer"/> (Unity: the name Mesh.GetNativeVertexBufferPtr
         /// returns on OpenGL ES), laid out by <paramref name="layout"/>; 0 stops writing. In Unity the

@@ -129,6 +129,15 @@ namespace Drape.Core
         [DllImport(Library, CallingConvention = Cdecl)]
         internal static extern Status drape_cloth_set_owner(ClothHandle cloth, ref Owner owner);
 
+        // ---- Self-collision (CPU backends only) ----
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_set_self_collision(ClothHandle cloth, ref SelfCollisionDesc desc);
+
+        /// <summary>desc.StructSize must be set (the native side refuses 0).</summary>
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_cloth_get_self_collision(ClothHandle cloth, ref SelfCollisionDesc desc);
+
         /// <summary>The native message for the last failure on this thread ("" if none).</summary>
         internal static string LastError()
         {

@@ -404,6 +404,37 @@ namespace Drape.Core
         }
     }
 
+    /// <summary>C twin: drape_self_collision_desc. Self-collision keeps particles of the cloth that are
+    /// not neighbours in the rest mesh at least Thickness apart, so a cloth folding onto itself does
+    /// not pass through itself. Off by default (no extra work). CPU backends only: enabling it on a
+    /// GLES cloth is refused with ErrorBackendUnavailable. Set with <see cref="Cloth.SetSelfCollision(SelfCollisionDesc)"/>
+    /// (which sets StructSize).</summary>
+    [Serializable]
+    [StructLayout(LayoutKind.Sequential)]
+    public struct SelfCollisionDesc
+    {
+        public uint StructSize;
+        /// <summary>1 = on, 0 = off (default); anything else is refused.</summary>
+        public uint Enabled;
+        /// <summary>m, distance kept between non-neighbour particles: &gt; 0 when enabled (&gt;= 0 when
+        /// not), at most 1/4 of the diagonal of the cloth's rest bounding box. The particle spacing is a
+        /// good value: well below it a particle can slip through a grid cell of another layer. Default 0.</summary>
+        public float Thickness;
+        /// <summary>Coulomb coefficient between layers in [0, 10]; 0 = frictionless (default). Typical 0.1-0.5.</summary>
+        public float Friction;
+
+        public SelfCollisionDesc(bool enabled, float thickness, float friction = 0f)
+        {
+            StructSize = SizeOf.SelfCollisionDesc;
+            Enabled = enabled ? 1u : 0u;
+            Thickness = thickness;
+            Friction = friction;
+        }
+
+        /// <summary>True when <see cref="Enabled"/> is 1.</summary>
+        public bool IsEnabled => Enabled != 0;
+    }
+
     /// <summary>struct_size values (sizeof the C twin on this platform).</summary>
     public static class SizeOf
     {
@@ -421,5 +452,6 @@ namespace Drape.Core
         public static readonly uint View = (uint)Marshal.SizeOf(typeof(View));
         public static readonly uint Touch = (uint)Marshal.SizeOf(typeof(Touch));
         public static readonly uint Owner = (uint)Marshal.SizeOf(typeof(Owner));
+        public static readonly uint SelfCollisionDesc = (uint)Marshal.SizeOf(typeof(SelfCollisionDesc));
     }
 }
