@@ -80,20 +80,28 @@ TEST(Physics, R1FreeFallFarFromOriginWithManySubsteps) {
     }
 }
 
-// R2: one spring (m = 1, L0 = 1, k = 1000, stretched to 1.5). Verlet keeps the amplitude and
-// oscillates at (2/h) asin(w h / 2); it is stable only for w h < 2.
-TEST(Physics, R2SpringFrequencyMatchesDiscreteVerlet) {
-    WorldPtr w = make_world();
-    drape_cloth* c = make_chain(w.get(), 1, 1.0f, 1.0f);
-    drape_params p = base_params(DRAPE_MODEL_MASS_SPRING);
+// One spring of R2: a particle of 1 kg on a spring (L0 = 1 m, k = 1000 N/m) from a fixed point,
+// no gravity or damping, released stretched to 1.5 m; 1 substep (XPBD: 30 iterations, converged).
+drape_cloth* single_spring(drape_world* w, drape_model model) {
+    drape_cloth* c = make_chain(w, 1, 1.0f, 1.0f);
+    drape_params p = base_params(model);
     p.stiffness[0] = 1000;
     p.stiffness[2] = 0;
     p.damping = 0;
     p.gravity[1] = 0;
     p.substeps = 1;
-    set(c, p);
+    p.iterations = 30;
+    EXPECT_EQ(drape_cloth_set_params(c, &p), DRAPE_OK) << drape_last_error();
     float start[] = {0, 0, 0, 0, -1.5f, 0};
-    ASSERT_DRAPE_OK(drape_cloth_set_positions(c, start, 2));
+    EXPECT_EQ(drape_cloth_set_positions(c, start, 2), DRAPE_OK) << drape_last_error();
+    return c;
+}
+
+// R2: one spring (m = 1, L0 = 1, k = 1000, stretched to 1.5). Verlet keeps the amplitude and
+// oscillates at (2/h) asin(w h / 2); it is stable only for w h < 2.
+TEST(Physics, R2SpringFrequencyMatchesDiscreteVerlet) {
+    WorldPtr w = make_world();
+    drape_cloth* c = single_spring(w.get(), DRAPE_MODEL_MASS_SPRING);
     const double omega = std::sqrt(1000.0), h = 0.01;
     const double expected = 2.0 / h * std::asin(omega * h / 2.0);
     // Displacement u = -(y + 1); find upward zero crossings by linear interpolation.
@@ -116,16 +124,7 @@ TEST(Physics, R2VerletStabilityLimitIsOmegaHEqualsTwo) {
     const double omega = std::sqrt(1000.0);
     for (double ratio : {1.9, 2.1}) {
         WorldPtr w = make_world();
-        drape_cloth* c = make_chain(w.get(), 1, 1.0f, 1.0f);
-        drape_params p = base_params(DRAPE_MODEL_MASS_SPRING);
-        p.stiffness[0] = 1000;
-        p.stiffness[2] = 0;
-        p.damping = 0;
-        p.gravity[1] = 0;
-        p.substeps = 1;
-        set(c, p);
-        float start[] = {0, 0, 0, 0, -1.5f, 0};
-        ASSERT_DRAPE_OK(drape_cloth_set_positions(c, start, 2));
+        drape_cloth* c = single_spring(w.get(), DRAPE_MODEL_MASS_SPRING);
         drape_status status = DRAPE_OK;
         for (int n = 0; n < 500 && status == DRAPE_OK; ++n) status = drape_cloth_step(c, float(ratio / omega));
         if (ratio < 2)
@@ -139,17 +138,7 @@ TEST(Physics, R2VerletStabilityLimitIsOmegaHEqualsTwo) {
 // and advances the phase by atan(w h) per step (closed-form discrete reference).
 TEST(Physics, R2XpbdMatchesImplicitEuler) {
     WorldPtr w = make_world();
-    drape_cloth* c = make_chain(w.get(), 1, 1.0f, 1.0f);
-    drape_params p = base_params(DRAPE_MODEL_XPBD);
-    p.stiffness[0] = 1000;
-    p.stiffness[2] = 0;
-    p.damping = 0;
-    p.gravity[1] = 0;
-    p.substeps = 1;
-    p.iterations = 30;
-    set(c, p);
-    float start[] = {0, 0, 0, 0, -1.5f, 0};
-    ASSERT_DRAPE_OK(drape_cloth_set_positions(c, start, 2));
+    drape_cloth* c = single_spring(w.get(), DRAPE_MODEL_XPBD);
     const double omega = std::sqrt(1000.0), h = 0.01;
     // Implicit Euler on u'' = -w^2 u from u0 = 0.5, v0 = 0: u_n = 0.5 r^n cos(n phi) / cos(phi0)
     // form; iterate the exact discrete recurrence instead of trusting a closed form.
