@@ -54,7 +54,8 @@ void main() {
     if (dot(n, u_eye - v_world) < 0.0) n = -n;  // two-sided cloth
     vec3 l = normalize(vec3(0.4, 0.9, 0.6));
     float diffuse = max(dot(n, l), 0.0);
-    float rim = pow(1.0 - max(dot(n, normalize(u_eye - v_world)), 0.0), 3.0);
+    // pow() is undefined below 0: a rounding |n| > 1 gave NaN (black) specks in folds.
+    float rim = pow(clamp(1.0 - dot(n, normalize(u_eye - v_world)), 0.0, 1.0), 3.0);
     // Checker by world position shows the folds.
     float check = mod(floor(v_world.x * 8.0) + floor(v_world.y * 8.0) + floor(v_world.z * 8.0), 2.0);
     vec3 base = u_color * (0.85 + 0.15 * check);
