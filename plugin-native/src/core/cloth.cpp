@@ -24,8 +24,6 @@ Cloth::Cloth(World& world, drape_backend backend, Topology topology)
     for (uint32_t i = 0; i < n; ++i) buffers_[cur_][i] = Particle(topo_.rest_position[i], 0.0f);
     lambda_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
     slot_coef_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
-    slot_alpha_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
-    slot_gamma_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
     const NeighbourTable& nb = topo_.nbr;
     col_index_.resize(nb.index.size());
     col_rest_.resize(nb.rest.size());
@@ -230,7 +228,7 @@ Result Cloth::step(float dt) {
     c.col_index = col_index_.data();
     c.col_rest = col_rest_.data();
     c.col_group = col_group_.data();
-    c.lambda = model == DRAPE_MODEL_XPBD ? lambda_.data() : nullptr;
+    c.lambda = model == DRAPE_MODEL_XPBD && params_.iterations > 1 ? lambda_.data() : nullptr;
     for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) {
         const float k = params_.stiffness[g];
         c.groups.stiffness[g] = k;
@@ -245,12 +243,11 @@ Result Cloth::step(float dt) {
     c.h = h;
     if (model == DRAPE_MODEL_XPBD)
         for_particles([&](uint32_t b, uint32_t e) {
-            kernels::spring_coefficients<true>(c, buffers_[cur_].data(), slot_coef_.data(), slot_alpha_.data(),
-                                               slot_gamma_.data(), b, e);
+            kernels::spring_coefficients<true>(c, buffers_[cur_].data(), slot_coef_.data(), b, e);
         });
     else if (model == DRAPE_MODEL_PBD)
         for_particles([&](uint32_t b, uint32_t e) {
-            kernels::spring_coefficients<false>(c, buffers_[cur_].data(), slot_coef_.data(), nullptr, nullptr, b, e);
+            kernels::spring_coefficients<false>(c, buffers_[cur_].data(), slot_coef_.data(), b, e);
         });
 
     for (uint32_t sub = 0; sub < substeps; ++sub) {
@@ -291,12 +288,10 @@ Result Cloth::step(float dt) {
                 Particle* dst = buffers_[out].data();
                 for_particles([&](uint32_t b, uint32_t e) {
                     using kernels::constraint_iteration_simd;
-                    const float* a = slot_alpha_.data();
-                    const float* g = slot_gamma_.data();
-                    if (xpbd && last) constraint_iteration_simd<true, true>(c, coef, a, g, src, cur, dst, disp, b, e);
-                    else if (xpbd) constraint_iteration_simd<true, false>(c, coef, a, g, src, cur, dst, nullptr, b, e);
-                    else if (last) constraint_iteration_simd<false, true>(c, coef, a, g, src, cur, dst, disp, b, e);
-                    else constraint_iteration_simd<false, false>(c, coef, a, g, src, cur, dst, nullptr, b, e);
+                    if (xpbd && last) constraint_iteration_simd<true, true>(c, coef, src, cur, dst, disp, b, e);
+                    else if (xpbd) constraint_iteration_simd<true, false>(c, coef, src, cur, dst, nullptr, b, e);
+                    else if (last) constraint_iteration_simd<false, true>(c, coef, src, cur, dst, disp, b, e);
+                    else constraint_iteration_simd<false, false>(c, coef, src, cur, dst, nullptr, b, e);
                 });
                 std::swap(in, out);
             }

@@ -110,7 +110,6 @@ protected:
     bool fresh_ = true;     ///< next substep is the first since positions/velocities were set
     std::vector<float> lambda_;
     std::vector<float> slot_coef_;  ///< per-spring Jacobi factor of the current step (kernels.h)
-    std::vector<float> slot_alpha_, slot_gamma_;  ///< XPBD per-spring compliance, damping ratio
     // Column-major copy of the neighbour table for the constraint iteration (kernels.h).
     std::vector<uint32_t> col_index_;
     std::vector<float> col_rest_;

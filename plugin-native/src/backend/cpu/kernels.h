@@ -51,7 +51,8 @@ struct SubstepContext {
     const float* col_rest;
     const uint8_t* col_group;
     float* lambda;                 ///< XPBD multipliers, one per slot, column-major (both ends keep
-                                   ///< equal copies)
+                                   ///< equal copies); NULL when there is one iteration per substep
+                                   ///< (they start at 0 and are never read again)
     GroupConstants groups;
     glm::vec3 gravity, wind;
     float air_drag;
@@ -168,11 +169,8 @@ inline float jacobi_scale(float wi, float wj, uint32_t ci, uint32_t cj, float di
 /// the active springs, none of which change between substeps): XPBD's 1/diag and PBD's k/wsum,
 /// each times jacobi_scale; 0 for inactive springs and padding. Column-major like `lambda`;
 /// symmetric in i and j.
-/// XPBD also gets each slot's compliance and damping ratio (per group) in column-major arrays, so
-/// the four-lane kernel loads them instead of looking them up per lane.
 template <bool kXpbd>
-inline void spring_coefficients(const SubstepContext& c, const Particle* x, float* coef, float* alpha, float* gamma,
-                                uint32_t begin, uint32_t end) {
+inline void spring_coefficients(const SubstepContext& c, const Particle* x, float* coef, uint32_t begin, uint32_t end) {
     for (uint32_t i = begin; i < end; ++i) {
         const float wi = x[i].w;
         const size_t row = size_t(i) * c.slots;
@@ -181,11 +179,6 @@ inline void spring_coefficients(const SubstepContext& c, const Particle* x, floa
             const size_t col = size_t(s) * c.stride + i;
             float& k = coef[col];
             k = 0.0f;
-            if (kXpbd) {
-                const uint8_t g = c.nbr_group[slot];
-                alpha[col] = g < DRAPE_GROUP_COUNT ? c.groups.compliance[g] : 0.0f;
-                gamma[col] = g < DRAPE_GROUP_COUNT ? c.groups.damping_ratio[g] : 0.0f;
-            }
             if (s >= c.nbr_count[i] || !active_slot(c, slot) || wi == 0.0f) continue;
             const uint32_t j = c.nbr_index[slot];
             const uint8_t g = c.nbr_group[slot];
@@ -228,9 +221,12 @@ inline void constraint_iteration(const SubstepContext& c, const float* coef, con
                 float dl;
                 if (kXpbd) {
                     const uint8_t g = c.col_group[slot];
-                    dl = (-constraint - c.groups.compliance[g] * c.lambda[slot] -
+                    // Without stored multipliers (one iteration per substep) lambda is 0 here:
+                    // -C - 0 is -C exactly, so skipping the term changes no bit.
+                    const float lambda = c.lambda ? c.lambda[slot] : 0.0f;
+                    dl = (-constraint - c.groups.compliance[g] * lambda -
                           c.groups.damping_ratio[g] * glm::dot(n, dij)) * coef[slot];
-                    c.lambda[slot] += dl;
+                    if (c.lambda) c.lambda[slot] = lambda + dl;
                 } else {
                     dl = -constraint * coef[slot];
                 }

@@ -64,12 +64,12 @@ inline V3 gather(const Particle* p, const uint32_t idx[4]) {
 #endif
 
 template <bool kXpbd, bool kCommit>
-inline void constraint_iteration_simd(const SubstepContext& c, const float* coef, const float* slot_alpha,
-                                      const float* slot_gamma, const Particle* disp,
+inline void constraint_iteration_simd(const SubstepContext& c, const float* coef, const Particle* disp,
                                       const Particle* start, Particle* out, Particle* x_out, uint32_t begin,
                                       uint32_t end) {
 #if DRAPE_SIMD
     using simd::F4;
+    using simd::I4;
     using simd::V3;
     uint32_t i = begin;
     for (; i + 4 <= end; i += 4) {
@@ -91,9 +91,15 @@ inline void constraint_iteration_simd(const SubstepContext& c, const float* coef
             std::memcpy(&rest, c.col_rest + base, sizeof rest);
             std::memcpy(&k, coef + base, sizeof k);
             if (kXpbd) {
-                std::memcpy(&lambda, c.lambda + base, sizeof lambda);
-                std::memcpy(&alpha, slot_alpha + base, sizeof alpha);
-                std::memcpy(&gamma, slot_gamma + base, sizeof gamma);
+                if (c.lambda) std::memcpy(&lambda, c.lambda + base, sizeof lambda);
+                // Per-group constants by lane (padding group: 0), without a per-slot array.
+                const I4 g = {c.col_group[base], c.col_group[base + 1], c.col_group[base + 2], c.col_group[base + 3]};
+                const F4 zero4 = {0, 0, 0, 0};
+                for (int gr = 0; gr < DRAPE_GROUP_COUNT; ++gr) {
+                    const I4 is = g == I4{gr, gr, gr, gr};
+                    alpha = is ? zero4 + c.groups.compliance[gr] : alpha;
+                    gamma = is ? zero4 + c.groups.damping_ratio[gr] : gamma;
+                }
             }
             const V3 dj = simd::gather(disp, j);
             const V3 sj = simd::gather(start, j);
@@ -110,8 +116,10 @@ inline void constraint_iteration_simd(const SubstepContext& c, const float* coef
                 const F4 ndot = n.x * dij.x + n.y * dij.y + n.z * dij.z;
                 dl = (-constraint - alpha * lambda - gamma * ndot) * k;
                 // Padding slots hold lambda 0 and get dl 0 (their factor is 0).
-                const F4 updated = lambda + dl;
-                std::memcpy(c.lambda + base, &updated, sizeof updated);
+                if (c.lambda) {
+                    const F4 updated = lambda + dl;
+                    std::memcpy(c.lambda + base, &updated, sizeof updated);
+                }
             } else {
                 dl = -constraint * k;
             }
