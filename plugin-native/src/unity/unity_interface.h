@@ -19,14 +19,16 @@ struct InterfaceGUID {  // UnityInterfaceGUID: 16 bytes, high then low
     unsigned long long high;
     unsigned long long low;
 };
-using Interface = void;  // IUnityInterface (empty base in C++, void in C)
 
 /// IUnityInterfaces: exactly these 4 function pointers.
+// Function-pointer types below use the plain C types the values travel as (void* for interface
+// pointers, int for Unity's int-sized enums): the same ABI as Unity's headers, and the same type as
+// a host declaring them so (UBSan's function check compares the types of calls through pointers).
 struct Interfaces {
-    Interface*(DRAPE_UNITY_API* GetInterface)(InterfaceGUID guid);
-    void(DRAPE_UNITY_API* RegisterInterface)(InterfaceGUID guid, Interface* ptr);
-    Interface*(DRAPE_UNITY_API* GetInterfaceSplit)(unsigned long long high, unsigned long long low);
-    void(DRAPE_UNITY_API* RegisterInterfaceSplit)(unsigned long long high, unsigned long long low, Interface* ptr);
+    void*(DRAPE_UNITY_API* GetInterface)(InterfaceGUID guid);
+    void(DRAPE_UNITY_API* RegisterInterface)(InterfaceGUID guid, void* ptr);
+    void*(DRAPE_UNITY_API* GetInterfaceSplit)(unsigned long long high, unsigned long long low);
+    void(DRAPE_UNITY_API* RegisterInterfaceSplit)(unsigned long long high, unsigned long long low, void* ptr);
 };
 
 /// UnityGfxRenderer (values we look at).
@@ -34,12 +36,13 @@ enum GfxRenderer : int { kRendererNull = 4, kRendererOpenGLES30 = 11, kRendererO
 /// UnityGfxDeviceEventType.
 enum GfxDeviceEventType : int { kEventInitialize = 0, kEventShutdown = 1, kEventBeforeReset = 2, kEventAfterReset = 3 };
 
-using DeviceEventCallback = void(DRAPE_UNITY_API*)(GfxDeviceEventType);
+/// Unity's parameter is UnityGfxDeviceEventType (int-sized).
+using DeviceEventCallback = void(DRAPE_UNITY_API*)(int);
 using RenderingEvent = void(DRAPE_UNITY_API*)(int event_id);
 
 /// IUnityGraphics: exactly these 4 function pointers.
 struct Graphics {
-    GfxRenderer(DRAPE_UNITY_API* GetRenderer)();
+    int(DRAPE_UNITY_API* GetRenderer)();  ///< UnityGfxRenderer
     void(DRAPE_UNITY_API* RegisterDeviceEventCallback)(DeviceEventCallback callback);
     void(DRAPE_UNITY_API* UnregisterDeviceEventCallback)(DeviceEventCallback callback);
     int(DRAPE_UNITY_API* ReserveEventIDRange)(int count);

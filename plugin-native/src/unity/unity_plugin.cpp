@@ -17,7 +17,7 @@ using namespace drape::unity;
 Graphics* g_graphics = nullptr;
 std::atomic<int> g_event_id{0};  // Drape's event id (reserved from Unity, 0 before load)
 
-void DRAPE_UNITY_API on_device_event(GfxDeviceEventType type) {
+void DRAPE_UNITY_API on_device_event(int type) {
     if (!g_graphics) return;
 #ifdef DRAPE_WITH_GLES
     switch (type) {
