@@ -80,8 +80,6 @@ public:
 
     /// Substeps a step of dt uses with the current parameters.
     uint32_t substeps_for(float dt) const;
-    /// MASS_SPRING: largest stable substep from the explicit bound (accuracy.md), s.
-    float stable_substep() const { return ms_h_max_; }
 
 protected:
     using Particle = glm::vec4;
@@ -131,7 +129,7 @@ protected:
 
     // Derived from params + masses.
     std::vector<uint32_t> active_count_;
-    float ms_h_max_ = 0;
+    float ms_h_max_ = 0;  ///< MASS_SPRING: largest stable substep from the explicit bound, s
 
     // Rollback copy and per-thread verify partials (allocated once).
     std::vector<Particle> backup_cur_, backup_disp_;
