@@ -655,6 +655,22 @@ std::vector<Config> sphere_configs(const Options& o) {
     for (uint32_t s : o.quick ? std::vector<uint32_t>{0} : std::vector<uint32_t>{0, 500}) out.push_back({DRAPE_MODEL_MASS_SPRING, s, 1});
     return out;
 }
+// The benchmarks' sphere collider (id 1, 5 mm margin) at (x, y, z) with radius r.
+drape_collider bench_sphere(float x, float y, float z, float r, float friction = 0.3f) {
+    drape_collider c{};
+    c.struct_size = sizeof c;
+    c.shape = DRAPE_COLLIDER_SPHERE;
+    c.id = 1;
+    c.position[0] = x;
+    c.position[1] = y;
+    c.position[2] = z;
+    c.rotation[3] = 1.0f;
+    c.size[0] = r;
+    c.margin = 0.005f;
+    c.friction = friction;
+    return c;
+}
+
 void run_precision_sphere(const Options& o, Csv& csv) {
     const uint32_t n = o.quick ? 12 : 32;
     const double seconds = 0.2;
@@ -663,17 +679,7 @@ void run_precision_sphere(const Options& o, Csv& csv) {
     gs.cols = gs.rows = n;
     gs.vertical = false;  // x-z plane at y = 0: x in [0, 1], z in [-1, 0]
     gs.pins = Pins::None;
-    drape_collider sphere{};
-    sphere.struct_size = sizeof sphere;
-    sphere.shape = DRAPE_COLLIDER_SPHERE;
-    sphere.id = 1;
-    sphere.position[0] = 0.52f;
-    sphere.position[1] = -0.30f;
-    sphere.position[2] = -0.47f;
-    sphere.rotation[3] = 1.0f;
-    sphere.size[0] = 0.25f;
-    sphere.margin = 0.005f;
-    sphere.friction = 0.5f;
+    const drape_collider sphere = bench_sphere(0.52f, -0.30f, -0.47f, 0.25f, 0.5f);
     struct Run {
         std::vector<float> x;
         std::vector<double> ms;
@@ -901,20 +907,7 @@ void run_stress(const Options& o) {
         sim->set_inverse_masses(w);
         sim->set_params(params_for(m));
         const float r = 0.15f;
-        auto sphere_at = [&](double t) {
-            drape_collider c{};
-            c.struct_size = sizeof c;
-            c.shape = DRAPE_COLLIDER_SPHERE;
-            c.id = 1;
-            c.position[0] = 0.5f;
-            c.position[1] = float(r + 0.2 - 0.6 * std::min(t, 1.0));
-            c.position[2] = -0.5f;
-            c.rotation[3] = 1.0f;
-            c.size[0] = r;
-            c.margin = 0.005f;
-            c.friction = 0.3f;
-            return c;
-        };
+        auto sphere_at = [&](double t) { return bench_sphere(0.5f, float(r + 0.2 - 0.6 * std::min(t, 1.0)), -0.5f, r); };
         drape_collider c0 = sphere_at(0);
         die_on(drape_cloth_set_colliders(sim->cloth, &c0, 1), "drape_cloth_set_colliders");
         Monitor mon;
@@ -1004,20 +997,7 @@ void run_stress(const Options& o) {
             auto sim = make_grid(base_grid(true));
             sim->set_params(params_for(m));
             const float r = 0.1f;
-            auto sphere_at = [&](double t) {
-                drape_collider c{};
-                c.struct_size = sizeof c;
-                c.shape = DRAPE_COLLIDER_SPHERE;
-                c.id = 1;
-                c.position[0] = 0.5f;
-                c.position[1] = -0.5f;
-                c.position[2] = float(-0.5 + std::min(1.0, speed * t));
-                c.rotation[3] = 1.0f;
-                c.size[0] = r;
-                c.margin = 0.005f;
-                c.friction = 0.3f;
-                return c;
-            };
+            auto sphere_at = [&](double t) { return bench_sphere(0.5f, -0.5f, float(-0.5 + std::min(1.0, speed * t)), r); };
             drape_collider c0 = sphere_at(0);
             die_on(drape_cloth_set_colliders(sim->cloth, &c0, 1), "drape_cloth_set_colliders");
             Monitor mon;
