@@ -3,7 +3,7 @@ using UnityEditor;
 using UnityEngine;
 using UnityEngine.Rendering;
 
-namespace Drape.Editor
+namespace Drape.Editing
 {
     /// <summary>Inspector for <see cref="DrapeCloth"/>: the serialized fields plus warnings about
     /// settings that will misbehave, and live statistics in Play mode.</summary>
@@ -65,8 +65,8 @@ namespace Drape.Editor
             else if (cloth.Backend == DrapeBackendChoice.Gpu && SystemInfo.graphicsDeviceType != GraphicsDeviceType.OpenGLES3)
                 list.Add("The GPU backend needs the OpenGL ES 3 graphics API (this editor uses " + SystemInfo.graphicsDeviceType +
                          "); the cloth runs on the CPU here and on the GPU on a GLES3 device.");
-            if (cloth.Colliders.Colliders.Count + cloth.Colliders.Planes.Count > Cloth.MaxColliders)
-                list.Add("More than " + Cloth.MaxColliders + " colliders and planes are listed; the rest are ignored.");
+            if (cloth.Colliders.Colliders.Count + cloth.Colliders.Planes.Count > NativeCloth.MaxColliders)
+                list.Add("More than " + NativeCloth.MaxColliders + " colliders and planes are listed; the rest are ignored.");
             foreach (UnityEngine.Collider c in cloth.Colliders.Colliders)
                 if (c != null && !(c is SphereCollider) && !(c is CapsuleCollider) && !(c is BoxCollider))
                     list.Add("Collider '" + c.name + "' is not a Sphere, Capsule or Box collider and is ignored.");

@@ -207,8 +207,8 @@ namespace Drape
         public DrapeColliderSet Colliders = new DrapeColliderSet();
 
         // Native objects and buffers.
-        private World _world;
-        private Cloth _cloth;
+        private NativeWorld _world;
+        private NativeCloth _cloth;
         private Mesh _mesh;
         private Mesh _originalMesh;
         private NativeArray<DrapeVertex> _vertices;
@@ -238,7 +238,7 @@ namespace Drape
         private static readonly VertexLayout s_layout = new VertexLayout(24, 0, 12);
 
         /// <summary>The native cloth, or null while disabled.</summary>
-        public Cloth NativeCloth => _cloth;
+        public NativeCloth NativeCloth => _cloth;
 
         /// <summary>Statistics of the last step.</summary>
         public Stats LastStats => _lastStats;
@@ -422,7 +422,7 @@ namespace Drape
             if (Colliders.Truncated && !_warnedTruncated)
             {
                 _warnedTruncated = true;
-                Debug.LogWarning("Drape: " + name + " lists more than " + Cloth.MaxColliders + " colliders; the rest are ignored.", this);
+                Debug.LogWarning("Drape: " + name + " lists more than " + NativeCloth.MaxColliders + " colliders; the rest are ignored.", this);
             }
             if (Colliders.Count == 0 && _sentColliders == 0) return;
             try
@@ -478,7 +478,7 @@ namespace Drape
             if (SystemInfo.graphicsDeviceType != GraphicsDeviceType.OpenGLES3) return false;
             try
             {
-                return World.IsBackendAvailable(Drape.Core.Backend.Gles);
+                return NativeWorld.IsBackendAvailable(Drape.Core.Backend.Gles);
             }
             catch (DrapeException)
             {
@@ -554,7 +554,7 @@ namespace Drape
                     AxisU = DrapeConvert.ToDrape(u.normalized),
                     AxisV = DrapeConvert.ToDrape(v.normalized),
                 };
-                _cloth = Cloth.CreateGrid(_world, desc, grid);
+                _cloth = NativeCloth.CreateGrid(_world, desc, grid);
             }
             else
             {
@@ -566,7 +566,7 @@ namespace Drape
                     flat[3 * i + 1] = p.y;
                     flat[3 * i + 2] = p.z;
                 }
-                _cloth = Cloth.CreateMesh(_world, desc, flat, triangles, WeldDistance);
+                _cloth = NativeCloth.CreateMesh(_world, desc, flat, triangles, WeldDistance);
             }
 
             // Output mesh: stream 0 = position + normal (written by the native side every step),
@@ -688,7 +688,7 @@ namespace Drape
         private void ApplyParams()
         {
             _paramsDirty = false;
-            Params p = World.DefaultParams();
+            Params p = NativeWorld.DefaultParams();
             p.Model = Model;
             p.Stiffness = new GroupValues(StructuralStiffness, ShearStiffness, BendStiffness);
             p.Damping = Damping;

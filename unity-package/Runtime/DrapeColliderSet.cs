@@ -29,16 +29,16 @@ namespace Drape
         private static readonly Quaternion s_yToX = new Quaternion(0f, 0f, -0.70710677f, 0.70710677f);
         private static readonly Quaternion s_yToZ = new Quaternion(0.70710677f, 0f, 0f, 0.70710677f);
 
-        private readonly Drape.Core.Collider[] _records = new Drape.Core.Collider[Cloth.MaxColliders];
+        private readonly Drape.Core.ColliderDesc[] _records = new Drape.Core.ColliderDesc[NativeCloth.MaxColliders];
 
         /// <summary>Records filled by the last <see cref="Gather"/>.</summary>
         public int Count { get; private set; }
 
-        /// <summary>True if the last Gather had to drop colliders beyond <see cref="Cloth.MaxColliders"/>.</summary>
+        /// <summary>True if the last Gather had to drop colliders beyond <see cref="NativeCloth.MaxColliders"/>.</summary>
         public bool Truncated { get; private set; }
 
         /// <summary>The records of the last <see cref="Gather"/> (the first <see cref="Count"/>).</summary>
-        public Span<Drape.Core.Collider> Records => new Span<Drape.Core.Collider>(_records, 0, Count);
+        public Span<Drape.Core.ColliderDesc> Records => new Span<Drape.Core.ColliderDesc>(_records, 0, Count);
 
         /// <summary>Fills <see cref="Records"/> with the current transforms, in the space of
         /// <paramref name="simulationSpace"/> (null: world space). Disabled, missing, duplicate and
@@ -118,9 +118,9 @@ namespace Drape
                 {
                     continue; // MeshCollider, TerrainCollider...: not supported
                 }
-                _records[n++] = new Drape.Core.Collider
+                _records[n++] = new Drape.Core.ColliderDesc
                 {
-                    StructSize = SizeOf.Collider,
+                    StructSize = SizeOf.ColliderDesc,
                     Shape = shape,
                     Id = id,
                     Position = DrapeConvert.ToDrape(toSim.MultiplyPoint3x4(center)),
@@ -141,9 +141,9 @@ namespace Drape
                 }
                 uint id = unchecked((uint)t.GetInstanceID());
                 if (Contains(n, id)) continue;
-                _records[n++] = new Drape.Core.Collider
+                _records[n++] = new Drape.Core.ColliderDesc
                 {
-                    StructSize = SizeOf.Collider,
+                    StructSize = SizeOf.ColliderDesc,
                     Shape = ColliderShape.Plane,
                     Id = id,
                     Position = DrapeConvert.ToDrape(toSim.MultiplyPoint3x4(t.position)),

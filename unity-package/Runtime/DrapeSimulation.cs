@@ -9,7 +9,7 @@ namespace Drape
     /// reset before a scene loads when domain reload is off.</summary>
     public static class DrapeSimulation
     {
-        private static World s_world;
+        private static NativeWorld s_world;
         private static int s_users;
         private static IntPtr s_renderCallback;
         private static int s_renderEventId;
@@ -25,7 +25,7 @@ namespace Drape
             if (!force && frame == s_renderEventFrame) return;
             if (s_renderCallback == IntPtr.Zero)
             {
-                World.GetUnityRenderEvent(out s_renderCallback, out s_renderEventId);
+                NativeWorld.GetUnityRenderEvent(out s_renderCallback, out s_renderEventId);
                 if (s_renderCallback == IntPtr.Zero) return; // GL.IssuePluginEvent throws on a null callback
             }
             s_renderEventFrame = frame;
@@ -33,9 +33,9 @@ namespace Drape
         }
 
         /// <summary>Takes a reference on the shared world (creating it if needed).</summary>
-        public static World Acquire()
+        public static NativeWorld Acquire()
         {
-            if (s_world == null || s_world.IsDisposed) s_world = new World(0);
+            if (s_world == null || s_world.IsDisposed) s_world = new NativeWorld(0);
             s_users++;
             return s_world;
         }

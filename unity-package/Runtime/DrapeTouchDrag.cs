@@ -48,13 +48,13 @@ namespace Drape
         private const uint GrabId = 0;
 
         private DrapeCloth _cloth;
-        private readonly Drape.Core.Touch[] _touches = new Drape.Core.Touch[1];
+        private readonly Drape.Core.TouchPoint[] _touches = new Drape.Core.TouchPoint[1];
         private Vector2 _lastPoint;
         private bool _wasActive;
         private bool _holding;
 
-        /// <summary>The vertex held in Grab mode, or <see cref="Cloth.NoVertex"/>.</summary>
-        public uint HeldVertex { get; private set; } = Cloth.NoVertex;
+        /// <summary>The vertex held in Grab mode, or <see cref="NativeCloth.NoVertex"/>.</summary>
+        public uint HeldVertex { get; private set; } = NativeCloth.NoVertex;
 
         private void OnEnable() => _cloth = GetComponent<DrapeCloth>();
 
@@ -66,7 +66,7 @@ namespace Drape
 
         private void Update()
         {
-            Cloth cloth = _cloth != null ? _cloth.NativeCloth : null;
+            NativeCloth cloth = _cloth != null ? _cloth.NativeCloth : null;
             Camera cam = Camera != null ? Camera : Camera.main;
             bool active = ReadPointer(out Vector2 screen) && cam != null && cloth != null;
             if (!active)
@@ -93,7 +93,7 @@ namespace Drape
                     if (!_wasActive)
                     {
                         HeldVertex = cloth.Grab(view, GrabId, new Float2(point.x, point.y), PickRadius);
-                        _holding = HeldVertex != Cloth.NoVertex;
+                        _holding = HeldVertex != NativeCloth.NoVertex;
                     }
                     else if (_holding && point != _lastPoint)
                     {
@@ -102,7 +102,7 @@ namespace Drape
                 }
                 else if (_wasActive && point != _lastPoint)
                 {
-                    _touches[0] = new Drape.Core.Touch
+                    _touches[0] = new Drape.Core.TouchPoint
                     {
                         Position = new Float2(_lastPoint.x, _lastPoint.y), // where the finger was
                         Motion = new Float2(point.x - _lastPoint.x, point.y - _lastPoint.y),
@@ -125,8 +125,8 @@ namespace Drape
         {
             if (!_holding) return;
             _holding = false;
-            HeldVertex = Cloth.NoVertex;
-            Cloth cloth = _cloth != null ? _cloth.NativeCloth : null;
+            HeldVertex = NativeCloth.NoVertex;
+            NativeCloth cloth = _cloth != null ? _cloth.NativeCloth : null;
             if (cloth != null && !cloth.IsDisposed) cloth.GrabRelease(GrabId);
         }
 

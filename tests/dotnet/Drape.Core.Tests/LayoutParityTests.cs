@@ -56,10 +56,10 @@ namespace Drape.Tests
             new object[] { "drape_pin", typeof(Pin) },
             new object[] { "drape_cloth_info", typeof(ClothInfo) },
             new object[] { "drape_stats", typeof(Stats) },
-            new object[] { "drape_collider", typeof(Collider) },
+            new object[] { "drape_collider", typeof(ColliderDesc) },
             new object[] { "drape_sleep_desc", typeof(SleepDesc) },
             new object[] { "drape_view", typeof(View) },
-            new object[] { "drape_touch", typeof(Touch) },
+            new object[] { "drape_touch", typeof(TouchPoint) },
             new object[] { "drape_owner", typeof(Owner) },
             new object[] { "drape_self_collision_desc", typeof(SelfCollisionDesc) },
         };
@@ -118,7 +118,7 @@ namespace Drape.Tests
         [Test]
         public void AbiVersionConstantMatchesHeader()
         {
-            Assert.That((long)World.ExpectedAbiVersion, Is.EqualTo(C["DRAPE_ABI_VERSION"]));
+            Assert.That((long)NativeWorld.ExpectedAbiVersion, Is.EqualTo(C["DRAPE_ABI_VERSION"]));
         }
 
         [Test]
@@ -127,13 +127,13 @@ namespace Drape.Tests
             Assert.That((long)SizeOf.Params, Is.EqualTo(C["drape_params"]));
             Assert.That((long)SizeOf.Stats, Is.EqualTo(C["drape_stats"]));
             Assert.That((long)SizeOf.MeshDesc, Is.EqualTo(C["drape_mesh_desc"]));
-            Assert.That((long)SizeOf.Collider, Is.EqualTo(C["drape_collider"]));
+            Assert.That((long)SizeOf.ColliderDesc, Is.EqualTo(C["drape_collider"]));
             Assert.That((long)SizeOf.SleepDesc, Is.EqualTo(C["drape_sleep_desc"]));
             Assert.That((long)SizeOf.View, Is.EqualTo(C["drape_view"]));
-            Assert.That((long)SizeOf.Touch, Is.EqualTo(C["drape_touch"]));
+            Assert.That((long)SizeOf.TouchPoint, Is.EqualTo(C["drape_touch"]));
             Assert.That((long)SizeOf.Owner, Is.EqualTo(C["drape_owner"]));
             Assert.That((long)SizeOf.SelfCollisionDesc, Is.EqualTo(C["drape_self_collision_desc"]));
-            Assert.That((long)Cloth.MaxColliders, Is.EqualTo(C["DRAPE_MAX_COLLIDERS"]));
+            Assert.That((long)NativeCloth.MaxColliders, Is.EqualTo(C["DRAPE_MAX_COLLIDERS"]));
         }
 
         [Test]

@@ -98,7 +98,7 @@ namespace Drape.Core
         // ---- Colliders, sleeping, touch drag, owner transform ----
 
         [DllImport(Library, CallingConvention = Cdecl)]
-        internal static extern unsafe Status drape_cloth_set_colliders(ClothHandle cloth, Collider* colliders, uint count);
+        internal static extern unsafe Status drape_cloth_set_colliders(ClothHandle cloth, ColliderDesc* colliders, uint count);
 
         [DllImport(Library, CallingConvention = Cdecl)]
         internal static extern Status drape_cloth_set_sleep(ClothHandle cloth, ref SleepDesc desc);
@@ -107,10 +107,10 @@ namespace Drape.Core
         internal static extern Status drape_cloth_wake(ClothHandle cloth);
 
         [DllImport(Library, CallingConvention = Cdecl)]
-        internal static extern Status drape_touch_default(out Touch touch);
+        internal static extern Status drape_touch_default(out TouchPoint touch);
 
         [DllImport(Library, CallingConvention = Cdecl)]
-        internal static extern unsafe Status drape_cloth_drag(ClothHandle cloth, ref View view, Touch* touches, uint count);
+        internal static extern unsafe Status drape_cloth_drag(ClothHandle cloth, ref View view, TouchPoint* touches, uint count);
 
         [DllImport(Library, CallingConvention = Cdecl)]
         internal static extern Status drape_cloth_grab(ClothHandle cloth, ref View view, uint touchId, ref Float2 position,

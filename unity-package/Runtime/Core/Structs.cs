@@ -181,7 +181,7 @@ namespace Drape.Core
         public float WeldDistance;
     }
 
-    /// <summary>C twin: drape_params. Settable at any time; <see cref="Cloth.DefaultParams"/> fills
+    /// <summary>C twin: drape_params. Settable at any time; <see cref="NativeWorld.DefaultParams"/> fills
     /// the library defaults.</summary>
     [Serializable]
     [StructLayout(LayoutKind.Sequential)]
@@ -290,9 +290,9 @@ namespace Drape.Core
     }
 
     /// <summary>C twin: drape_collider. One element of the array given to
-    /// <see cref="Cloth.SetColliders"/> (which sets StructSize).</summary>
+    /// <see cref="NativeCloth.SetColliders"/> (which sets StructSize).</summary>
     [StructLayout(LayoutKind.Sequential)]
-    public struct Collider
+    public struct ColliderDesc
     {
         public uint StructSize;
         public ColliderShape Shape;
@@ -313,13 +313,13 @@ namespace Drape.Core
         /// <summary>Coulomb coefficient in [0, 10]; 0 = frictionless. Typical 0.3-0.8.</summary>
         public float Friction;
 
-        public static Collider Sphere(uint id, Float3 center, float radius, float margin = 0.005f, float friction = 0.5f) =>
-            new Collider { StructSize = SizeOf.Collider, Shape = ColliderShape.Sphere, Id = id, Position = center,
+        public static ColliderDesc Sphere(uint id, Float3 center, float radius, float margin = 0.005f, float friction = 0.5f) =>
+            new ColliderDesc { StructSize = SizeOf.ColliderDesc, Shape = ColliderShape.Sphere, Id = id, Position = center,
                            Rotation = Float4.IdentityRotation, Size = new Float3(radius, 0f, 0f), Margin = margin,
                            Friction = friction };
 
-        public static Collider Plane(uint id, Float3 point, Float4 rotation, float margin = 0.005f, float friction = 0.5f) =>
-            new Collider { StructSize = SizeOf.Collider, Shape = ColliderShape.Plane, Id = id, Position = point,
+        public static ColliderDesc Plane(uint id, Float3 point, Float4 rotation, float margin = 0.005f, float friction = 0.5f) =>
+            new ColliderDesc { StructSize = SizeOf.ColliderDesc, Shape = ColliderShape.Plane, Id = id, Position = point,
                            Rotation = rotation, Margin = margin, Friction = friction };
     }
 
@@ -355,10 +355,10 @@ namespace Drape.Core
 
     /// <summary>C twin: drape_touch. One finger of a touch drag (paper eq. 9 with the exponent's sign
     /// restored): c = min(1, A exp(-r^2 / (2 sigma))), r = the vertex's screen distance (px) from
-    /// Position; the vertex's screen position moves by c * Motion. <see cref="Touch.Default"/> fills
+    /// Position; the vertex's screen position moves by c * Motion. <see cref="TouchPoint.Default"/> fills
     /// the library defaults.</summary>
     [StructLayout(LayoutKind.Sequential)]
-    public struct Touch
+    public struct TouchPoint
     {
         public uint StructSize;
         /// <summary>px, where the finger was at the previous call (the touch point).</summary>
@@ -371,9 +371,9 @@ namespace Drape.Core
         public float Sigma;
 
         /// <summary>The library defaults (Position, Motion 0; A 200; sigma 300 px^2).</summary>
-        public static Touch Default()
+        public static TouchPoint Default()
         {
-            NativeMethods.Check(NativeMethods.drape_touch_default(out Touch t), "drape_touch_default");
+            NativeMethods.Check(NativeMethods.drape_touch_default(out TouchPoint t), "drape_touch_default");
             return t;
         }
     }
@@ -407,7 +407,7 @@ namespace Drape.Core
     /// <summary>C twin: drape_self_collision_desc. Self-collision keeps particles of the cloth that are
     /// not neighbours in the rest mesh at least Thickness apart, so a cloth folding onto itself does
     /// not pass through itself. Off by default (no extra work). CPU backends only: enabling it on a
-    /// GLES cloth is refused with ErrorBackendUnavailable. Set with <see cref="Cloth.SetSelfCollision(SelfCollisionDesc)"/>
+    /// GLES cloth is refused with ErrorBackendUnavailable. Set with <see cref="NativeCloth.SetSelfCollision(SelfCollisionDesc)"/>
     /// (which sets StructSize).</summary>
     [Serializable]
     [StructLayout(LayoutKind.Sequential)]
@@ -447,10 +447,10 @@ namespace Drape.Core
         public static readonly uint Pin = (uint)Marshal.SizeOf(typeof(Pin));
         public static readonly uint ClothInfo = (uint)Marshal.SizeOf(typeof(ClothInfo));
         public static readonly uint Stats = (uint)Marshal.SizeOf(typeof(Stats));
-        public static readonly uint Collider = (uint)Marshal.SizeOf(typeof(Collider));
+        public static readonly uint ColliderDesc = (uint)Marshal.SizeOf(typeof(ColliderDesc));
         public static readonly uint SleepDesc = (uint)Marshal.SizeOf(typeof(SleepDesc));
         public static readonly uint View = (uint)Marshal.SizeOf(typeof(View));
-        public static readonly uint Touch = (uint)Marshal.SizeOf(typeof(Touch));
+        public static readonly uint TouchPoint = (uint)Marshal.SizeOf(typeof(TouchPoint));
         public static readonly uint Owner = (uint)Marshal.SizeOf(typeof(Owner));
         public static readonly uint SelfCollisionDesc = (uint)Marshal.SizeOf(typeof(SelfCollisionDesc));
     }

@@ -24,13 +24,13 @@ namespace Drape.Tests
             RequireAllocationCounter();
             long probeBefore = 0;
 
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 16, 16))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 16, 16))
             {
                 var pins = new Pin[2];
                 var layout = new VertexLayout(24, 0, 12); // position + normal, like a Unity vertex stream
                 byte[] vertices = new byte[24 * cloth.VertexCount];
-                Params p = World.DefaultParams();
+                Params p = NativeWorld.DefaultParams();
 
                 for (int frame = 0; frame < 200; ++frame)
                 {
@@ -60,12 +60,12 @@ namespace Drape.Tests
             // What DrapeCloth and DrapeTouchDrag do each frame: push every collider transform in one
             // call from a preallocated array, drag, move the owner, step the world, read the stats.
             RequireAllocationCounter();
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 16, 16))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 16, 16))
             {
-                var colliders = new Collider[Cloth.MaxColliders];
+                var colliders = new ColliderDesc[NativeCloth.MaxColliders];
                 View view = TestScenes.PerspectiveView();
-                var touches = new Touch[1];
+                var touches = new TouchPoint[1];
                 Owner owner = Owner.Default();
                 var xyz = new float[cloth.VertexCount * 3];
                 cloth.SetSleep(0.01f, 1f);
@@ -74,20 +74,20 @@ namespace Drape.Tests
                 {
                     if (frame == 100) before = GC.GetAllocatedBytesForCurrentThread();
                     float t = frame * (1f / 60f);
-                    colliders[0] = Collider.Sphere(1, new Float3(0.5f, 0.5f + 0.1f * t, -0.5f), 0.3f);
-                    colliders[1] = Collider.Plane(2, new Float3(0f, -0.5f, 0f), Float4.IdentityRotation);
-                    colliders[2] = new Collider
+                    colliders[0] = ColliderDesc.Sphere(1, new Float3(0.5f, 0.5f + 0.1f * t, -0.5f), 0.3f);
+                    colliders[1] = ColliderDesc.Plane(2, new Float3(0f, -0.5f, 0f), Float4.IdentityRotation);
+                    colliders[2] = new ColliderDesc
                     {
                         Shape = ColliderShape.Capsule, Id = 3, Position = new Float3(2f, 0f, 0f),
                         Rotation = Float4.IdentityRotation, Size = new Float3(0.1f, 0.3f, 0f), Margin = 0.005f,
                     };
-                    colliders[3] = new Collider
+                    colliders[3] = new ColliderDesc
                     {
                         Shape = ColliderShape.Box, Id = 4, Position = new Float3(-2f, 0f, 0f),
                         Rotation = Float4.IdentityRotation, Size = new Float3(0.1f, 0.2f, 0.3f), Margin = 0.005f,
                     };
-                    cloth.SetColliders(new Span<Collider>(colliders, 0, 4));
-                    touches[0] = new Touch { Position = new Float2(200f, 150f), Motion = new Float2(1f, 0f),
+                    cloth.SetColliders(new Span<ColliderDesc>(colliders, 0, 4));
+                    touches[0] = new TouchPoint { Position = new Float2(200f, 150f), Motion = new Float2(1f, 0f),
                                              Amplitude = 200f, Sigma = 300f };
                     cloth.Drag(view, touches);
                     owner.Position = new Float3(0.001f * frame, 0f, 0f);

@@ -8,13 +8,13 @@ namespace Drape.Tests
     /// never a crash, and must leave the object unchanged.</summary>
     public class BadInputTests
     {
-        private World _world;
-        private Cloth _cloth;
+        private NativeWorld _world;
+        private NativeCloth _cloth;
 
         [SetUp]
         public void SetUp()
         {
-            _world = new World(1);
+            _world = new NativeWorld(1);
             _cloth = TestScenes.HorizontalGrid(_world, 4, 4);
         }
 
@@ -53,14 +53,14 @@ namespace Drape.Tests
         public void EmptyGrid()
         {
             var grid = new GridDesc { Columns = 0, Rows = 4, Width = 1f, Height = 1f };
-            Fails(() => Cloth.CreateGrid(_world, new ClothDesc { TotalMass = 1f }, grid), Status.ErrorInvalidArgument);
+            Fails(() => NativeCloth.CreateGrid(_world, new ClothDesc { TotalMass = 1f }, grid), Status.ErrorInvalidArgument);
         }
 
         [Test]
         public void NegativeMass()
         {
             var grid = new GridDesc { Columns = 3, Rows = 3, Width = 1f, Height = 1f };
-            DrapeException e = Fails(() => Cloth.CreateGrid(_world, new ClothDesc { TotalMass = -1f }, grid),
+            DrapeException e = Fails(() => NativeCloth.CreateGrid(_world, new ClothDesc { TotalMass = -1f }, grid),
                                      Status.ErrorInvalidArgument);
             Assert.That(e.NativeMessage, Does.Contain("total_mass"));
         }
@@ -69,16 +69,16 @@ namespace Drape.Tests
         public void UnknownBackendEnum()
         {
             var grid = new GridDesc { Columns = 3, Rows = 3, Width = 1f, Height = 1f };
-            Fails(() => Cloth.CreateGrid(_world, new ClothDesc { Backend = (Backend)99, TotalMass = 1f }, grid),
+            Fails(() => NativeCloth.CreateGrid(_world, new ClothDesc { Backend = (Backend)99, TotalMass = 1f }, grid),
                   Status.ErrorInvalidEnum);
         }
 
         [Test]
         public void UnavailableBackendFailsSoftly()
         {
-            if (World.IsBackendAvailable(Backend.Gles)) Assert.Ignore("GLES is available here");
+            if (NativeWorld.IsBackendAvailable(Backend.Gles)) Assert.Ignore("GLES is available here");
             var grid = new GridDesc { Columns = 3, Rows = 3, Width = 1f, Height = 1f };
-            Fails(() => Cloth.CreateGrid(_world, new ClothDesc { Backend = Backend.Gles, TotalMass = 1f }, grid),
+            Fails(() => NativeCloth.CreateGrid(_world, new ClothDesc { Backend = Backend.Gles, TotalMass = 1f }, grid),
                   Status.ErrorBackendUnavailable);
         }
 
@@ -87,7 +87,7 @@ namespace Drape.Tests
         {
             float[] positions = { 0, 0, 0, 1, 0, 0, 2, 0, 0 }; // collinear: zero area
             int[] indices = { 0, 1, 2 };
-            Fails(() => Cloth.CreateMesh(_world, new ClothDesc { TotalMass = 1f }, positions, indices, 0f),
+            Fails(() => NativeCloth.CreateMesh(_world, new ClothDesc { TotalMass = 1f }, positions, indices, 0f),
                   Status.ErrorDegenerateMesh);
         }
 
@@ -96,7 +96,7 @@ namespace Drape.Tests
         {
             float[] positions = { 0, 0, 0, 1, 0, 0, 0, 0, 1 };
             int[] indices = { 0, 1, 7 };
-            Fails(() => Cloth.CreateMesh(_world, new ClothDesc { TotalMass = 1f }, positions, indices, 0f),
+            Fails(() => NativeCloth.CreateMesh(_world, new ClothDesc { TotalMass = 1f }, positions, indices, 0f),
                   Status.ErrorIndexOutOfRange);
         }
 
@@ -124,7 +124,7 @@ namespace Drape.Tests
         [Test]
         public void BadParamsLeaveTheClothUnchanged()
         {
-            Params good = World.DefaultParams();
+            Params good = NativeWorld.DefaultParams();
             good.Damping = 0.75f;
             _cloth.SetParams(good);
 
@@ -146,7 +146,7 @@ namespace Drape.Tests
         public void WrongStructSizeIsRefusedWithTheNativeMessage()
         {
             // Through the raw binding: the wrappers always set StructSize themselves.
-            Params p = World.DefaultParams();
+            Params p = NativeWorld.DefaultParams();
             p.StructSize = SizeOf.Params + 4;
             Status s = NativeMethods.drape_cloth_set_params(_cloth.Handle, ref p);
             Assert.That(s, Is.EqualTo(Status.ErrorStructSize));
@@ -166,7 +166,7 @@ namespace Drape.Tests
         public void OddPositionArrayIsRefusedBeforeTheNativeCall()
         {
             Assert.Throws<ArgumentException>(() =>
-                Cloth.CreateMesh(_world, new ClothDesc { TotalMass = 1f }, new float[7], new[] { 0, 1, 2 }, 0f));
+                NativeCloth.CreateMesh(_world, new ClothDesc { TotalMass = 1f }, new float[7], new[] { 0, 1, 2 }, 0f));
         }
     }
 }

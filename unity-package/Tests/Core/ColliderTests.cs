@@ -18,10 +18,10 @@ namespace Drape.Tests
             // sphere (y ~ 0.75 + margin) and no vertex may be inside it, while the free edges hang down.
             const float radius = 0.25f, margin = 0.005f;
             var center = new Float3(0.5f, 0.5f, -0.5f);
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 21, 21, 1.5f))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 21, 21, 1.5f))
             {
-                var colliders = new[] { Collider.Sphere(7, center, radius, margin, 0.5f) };
+                var colliders = new[] { ColliderDesc.Sphere(7, center, radius, margin, 0.5f) };
                 var xyz = new float[cloth.VertexCount * 3];
                 for (int i = 0; i < 120; ++i)
                 {
@@ -48,11 +48,11 @@ namespace Drape.Tests
         public void WithoutTheColliderTheClothFallsThrough()
         {
             // Control for the test above: same scene, colliders removed (empty span).
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 21, 21, 1.5f))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 21, 21, 1.5f))
             {
-                cloth.SetColliders(new[] { Collider.Sphere(7, new Float3(0.5f, 0.5f, -0.5f), 0.25f) });
-                cloth.SetColliders(Span<Collider>.Empty);
+                cloth.SetColliders(new[] { ColliderDesc.Sphere(7, new Float3(0.5f, 0.5f, -0.5f), 0.25f) });
+                cloth.SetColliders(Span<ColliderDesc>.Empty);
                 for (int i = 0; i < 60; ++i) cloth.Step(Dt);
                 var xyz = new float[cloth.VertexCount * 3];
                 cloth.ReadPositions(xyz);
@@ -64,10 +64,10 @@ namespace Drape.Tests
         public void ClothRestsOnAPlane()
         {
             // Ground plane y = 0 (identity rotation: +y is the free side).
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 9, 9, 0.3f))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 9, 9, 0.3f))
             {
-                var colliders = new[] { Collider.Plane(1, new Float3(0f, 0f, 0f), Float4.IdentityRotation, 0.01f) };
+                var colliders = new[] { ColliderDesc.Plane(1, new Float3(0f, 0f, 0f), Float4.IdentityRotation, 0.01f) };
                 for (int i = 0; i < 90; ++i)
                 {
                     cloth.SetColliders(colliders);
@@ -80,7 +80,7 @@ namespace Drape.Tests
             }
         }
 
-        private static DrapeException Refused(Cloth cloth, Collider[] colliders, Status expected)
+        private static DrapeException Refused(NativeCloth cloth, ColliderDesc[] colliders, Status expected)
         {
             var e = Assert.Throws<DrapeException>(() => cloth.SetColliders(colliders));
             Assert.That(e.Status, Is.EqualTo(expected));
@@ -93,12 +93,12 @@ namespace Drape.Tests
         [Test]
         public void BadColliderInputThrowsWithTheNativeMessage()
         {
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 4, 4))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 4, 4))
             {
-                var good = Collider.Sphere(1, new Float3(0f, 0f, 0f), 0.5f);
+                var good = ColliderDesc.Sphere(1, new Float3(0f, 0f, 0f), 0.5f);
 
-                Collider c = good;
+                ColliderDesc c = good;
                 c.Size.X = -1f;
                 Refused(cloth, new[] { c }, Status.ErrorInvalidArgument);
 
@@ -120,9 +120,9 @@ namespace Drape.Tests
 
                 Refused(cloth, new[] { good, good }, Status.ErrorInvalidArgument); // duplicate id
 
-                var tooMany = new Collider[Cloth.MaxColliders + 1];
+                var tooMany = new ColliderDesc[NativeCloth.MaxColliders + 1];
                 for (int k = 0; k < tooMany.Length; ++k)
-                    tooMany[k] = Collider.Sphere((uint)k, new Float3(k, 0f, 0f), 0.1f);
+                    tooMany[k] = ColliderDesc.Sphere((uint)k, new Float3(k, 0f, 0f), 0.1f);
                 Refused(cloth, tooMany, Status.ErrorInvalidArgument);
 
                 // The cloth still works and takes good input after the refusals.

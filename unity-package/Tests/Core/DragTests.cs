@@ -14,10 +14,10 @@ namespace Drape.Tests
 
         /// <summary>A 21 x 21 facing cloth with no springs, gravity or air: each vertex moves exactly
         /// by what the touch gives it (as in tests/native/test_drag.cpp).</summary>
-        private static Cloth FreeCloth(World world)
+        private static NativeCloth FreeCloth(NativeWorld world)
         {
-            Cloth cloth = TestScenes.FacingGrid(world, Columns, Columns);
-            Params p = World.DefaultParams();
+            NativeCloth cloth = TestScenes.FacingGrid(world, Columns, Columns);
+            Params p = NativeWorld.DefaultParams();
             p.Stiffness = new GroupValues(0f, 0f, 0f);
             p.Gravity = new Float3(0f, 0f, 0f);
             p.AirDrag = 0f;
@@ -36,8 +36,8 @@ namespace Drape.Tests
             // 150 px / (1.5 tan 30 deg) = 173.2 px/m. Touch on the centre vertex, finger moves 20 px
             // right: with c = min(1, 200 exp(-r^2/600)) = 1 at r = 0 the centre moves 20/173.2 =
             // 0.1155 m along +x. The corner is 0.707 m = 122 px away: c = 200 exp(-24.9) ~ 3e-9.
-            using (var world = new World(1))
-            using (Cloth cloth = FreeCloth(world))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = FreeCloth(world))
             {
                 View view = TestScenes.PerspectiveView(1.5f);
                 var xyz = new float[cloth.VertexCount * 3];
@@ -65,8 +65,8 @@ namespace Drape.Tests
             // The cloth simulates in a local space shifted by (-0.2, 0, 0) from the world, as a
             // DrapeCloth on a moved GameObject does: View.World carries that. Touching where the
             // local (0.2, 0, 0) vertex appears on screen (world x = 0) must move that vertex.
-            using (var world = new World(1))
-            using (Cloth cloth = FreeCloth(world))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = FreeCloth(world))
             {
                 View view = TestScenes.PerspectiveView(1.5f);
                 view.World.M03 = -0.2f;
@@ -87,8 +87,8 @@ namespace Drape.Tests
         [Test]
         public void GrabHoldsTheNearestVertexUnderTheFinger()
         {
-            using (var world = new World(1))
-            using (Cloth cloth = FreeCloth(world))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = FreeCloth(world))
             {
                 View view = TestScenes.PerspectiveView(1.5f);
                 var xyz = new float[cloth.VertexCount * 3];
@@ -105,7 +105,7 @@ namespace Drape.Tests
                 cloth.GrabRelease(4);
                 cloth.GrabRelease(12345); // unknown id: fine
 
-                Assert.That(cloth.Grab(view, 5, new Float2(5f, 5f), 10f), Is.EqualTo(Cloth.NoVertex),
+                Assert.That(cloth.Grab(view, 5, new Float2(5f, 5f), 10f), Is.EqualTo(NativeCloth.NoVertex),
                             "nothing is near the screen corner");
             }
         }
@@ -113,8 +113,8 @@ namespace Drape.Tests
         [Test]
         public void BadDragInputThrowsWithTheNativeMessage()
         {
-            using (var world = new World(1))
-            using (Cloth cloth = FreeCloth(world))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = FreeCloth(world))
             {
                 View view = TestScenes.PerspectiveView();
                 View flat = view;
@@ -127,7 +127,7 @@ namespace Drape.Tests
                 e = Assert.Throws<DrapeException>(() => cloth.Drag(view, new Float2(float.NaN, 1f), new Float2(1f, 0f)));
                 Assert.That(e.Status, Is.EqualTo(Status.ErrorNotFinite));
 
-                e = Assert.Throws<DrapeException>(() => cloth.Drag(view, new Touch[17]));
+                e = Assert.Throws<DrapeException>(() => cloth.Drag(view, new TouchPoint[17]));
                 Assert.That(e.NativeMessage, Is.Not.Empty);
 
                 e = Assert.Throws<DrapeException>(() => cloth.GrabMove(view, 99, new Float2(1f, 1f)));
@@ -139,8 +139,8 @@ namespace Drape.Tests
         [Test]
         public void TouchDefaultsAreTheDocumentedOnes()
         {
-            Touch t = Touch.Default();
-            Assert.That(t.StructSize, Is.EqualTo(SizeOf.Touch));
+            TouchPoint t = TouchPoint.Default();
+            Assert.That(t.StructSize, Is.EqualTo(SizeOf.TouchPoint));
             Assert.That(t.Amplitude, Is.EqualTo(200f));
             Assert.That(t.Sigma, Is.EqualTo(300f));
         }

@@ -9,21 +9,21 @@ namespace Drape.Tests
         [Test]
         public void AbiVersionMatchesBindings()
         {
-            Assert.That(World.AbiVersion, Is.EqualTo(World.ExpectedAbiVersion));
+            Assert.That(NativeWorld.AbiVersion, Is.EqualTo(NativeWorld.ExpectedAbiVersion));
         }
 
         [Test]
         public void CpuBackendsAreAvailable()
         {
-            Assert.That(World.IsBackendAvailable(Backend.Cpu), Is.True);
-            Assert.That(World.IsBackendAvailable(Backend.CpuThreaded), Is.True);
+            Assert.That(NativeWorld.IsBackendAvailable(Backend.Cpu), Is.True);
+            Assert.That(NativeWorld.IsBackendAvailable(Backend.CpuThreaded), Is.True);
         }
 
         [Test]
         public void CreateAndDisposeWorldAndCloth()
         {
-            var world = new World(1);
-            Cloth cloth = TestScenes.HorizontalGrid(world, 4, 3);
+            var world = new NativeWorld(1);
+            NativeCloth cloth = TestScenes.HorizontalGrid(world, 4, 3);
             Assert.That(cloth.IsDisposed, Is.False);
             cloth.Dispose();
             Assert.That(cloth.IsDisposed, Is.True);
@@ -39,8 +39,8 @@ namespace Drape.Tests
             // 10 x 8 vertices. Structural: 9*8 along rows + 10*7 along columns = 142.
             // Shear: two diagonals per cell, 9*7*2 = 126. Bend (two apart): 8*8 + 10*6 = 124.
             // Triangles: two per cell = 126.
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 10, 8))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 10, 8))
             {
                 ClothInfo info = cloth.Info;
                 Assert.That(info.VertexCount, Is.EqualTo(80u));
@@ -65,8 +65,8 @@ namespace Drape.Tests
                 0, 0, 0, 1, 0, 1, 0, 0, 1, // triangle 2 (copies of vertex 0 and 2)
             };
             int[] indices = { 0, 2, 1, 3, 5, 4 };
-            using (var world = new World(1))
-            using (Cloth cloth = Cloth.CreateMesh(world, new ClothDesc { TotalMass = 1f }, positions, indices, 0f))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = NativeCloth.CreateMesh(world, new ClothDesc { TotalMass = 1f }, positions, indices, 0f))
             {
                 Assert.That(cloth.Info.VertexCount, Is.EqualTo(6u));
                 Assert.That(cloth.Info.ParticleCount, Is.EqualTo(4u));
@@ -77,8 +77,8 @@ namespace Drape.Tests
         [Test]
         public void ClothKeepsItsWorldAliveAfterWorldDispose()
         {
-            var world = new World(1);
-            Cloth cloth = TestScenes.HorizontalGrid(world, 4, 4);
+            var world = new NativeWorld(1);
+            NativeCloth cloth = TestScenes.HorizontalGrid(world, 4, 4);
             world.Dispose();
             // The native world is destroyed only when its last cloth goes; until then the cloth works.
             Assert.DoesNotThrow(() => cloth.Step(1f / 60f));
@@ -89,8 +89,8 @@ namespace Drape.Tests
         [Test]
         public void UseAfterDisposeThrowsObjectDisposed()
         {
-            var world = new World(1);
-            Cloth cloth = TestScenes.HorizontalGrid(world, 4, 4);
+            var world = new NativeWorld(1);
+            NativeCloth cloth = TestScenes.HorizontalGrid(world, 4, 4);
             cloth.Dispose();
             Assert.Throws<ObjectDisposedException>(() => cloth.Step(0.01f));
             world.Dispose();
@@ -108,8 +108,8 @@ namespace Drape.Tests
             }
             Assert.That(leaked.IsAlive, Is.False, "the cloth handle was not finalized");
             // The library is still usable afterwards (no double free, no stale handle).
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 3, 3))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 3, 3))
             {
                 cloth.Step(0.01f);
             }
@@ -117,8 +117,8 @@ namespace Drape.Tests
 
         private static WeakReference LeakWorldAndCloth()
         {
-            var world = new World(1);
-            Cloth cloth = TestScenes.HorizontalGrid(world, 3, 3);
+            var world = new NativeWorld(1);
+            NativeCloth cloth = TestScenes.HorizontalGrid(world, 3, 3);
             cloth.Step(0.01f);
             return new WeakReference(cloth.Handle);
         }

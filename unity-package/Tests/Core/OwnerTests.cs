@@ -8,11 +8,11 @@ namespace Drape.Tests
     {
         private const float Dt = 1f / 60f;
 
-        private static Cloth Weightless(World world)
+        private static NativeCloth Weightless(NativeWorld world)
         {
-            Cloth cloth = TestScenes.FacingGrid(world, 8, 8);
+            NativeCloth cloth = TestScenes.FacingGrid(world, 8, 8);
             cloth.SetPins(new[] { new Pin(0, new Float3(-0.5f, 0.5f, 0f)), new Pin(7, new Float3(0.5f, 0.5f, 0f)) });
-            Params p = World.DefaultParams();
+            Params p = NativeWorld.DefaultParams();
             p.Gravity = new Float3(0f, 0f, 0f);
             p.AirDrag = 0f;
             cloth.SetParams(p);
@@ -35,8 +35,8 @@ namespace Drape.Tests
         {
             // Linear inertia 0: the cloth is carried fully (local space). The owner moves 0.3 m along
             // x: pins and free vertices all move by 0.3 m, shape unchanged.
-            using (var world = new World(1))
-            using (Cloth cloth = Weightless(world))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = Weightless(world))
             {
                 var before = new float[cloth.VertexCount * 3];
                 var after = new float[before.Length];
@@ -60,8 +60,8 @@ namespace Drape.Tests
         [Test]
         public void WithInertiaPinsFollowAndTheClothLags()
         {
-            using (var world = new World(1))
-            using (Cloth cloth = Weightless(world))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = Weightless(world))
             {
                 var before = new float[cloth.VertexCount * 3];
                 var after = new float[before.Length];
@@ -82,8 +82,8 @@ namespace Drape.Tests
         [Test]
         public void BadOwnerInputThrowsWithTheNativeMessage()
         {
-            using (var world = new World(1))
-            using (Cloth cloth = Weightless(world))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = Weightless(world))
             {
                 Owner o = Owner.Default();
                 o.LinearInertia = 1.5f;

@@ -10,7 +10,7 @@ namespace Drape.Tests
         {
             // drape.h: XPBD, stiffness 2000/1000/200, damping 0.05, gravity (0,-9.81,0), wind 0,
             // air drag 0.1, substeps 0 (automatic: 16 small steps), 1 iteration, tethers at 10% stretch.
-            Params p = World.DefaultParams();
+            Params p = NativeWorld.DefaultParams();
             Assert.That(p.StructSize, Is.EqualTo(SizeOf.Params));
             Assert.That(p.Model, Is.EqualTo(Model.Xpbd));
             Assert.That(p.Stiffness.Structural, Is.EqualTo(2000f));
@@ -28,10 +28,10 @@ namespace Drape.Tests
         [Test]
         public void NewClothStartsWithTheDefaults()
         {
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 4, 4))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 4, 4))
             {
-                Params expected = World.DefaultParams();
+                Params expected = NativeWorld.DefaultParams();
                 Params actual = cloth.GetParams();
                 Assert.That(actual.Model, Is.EqualTo(expected.Model));
                 Assert.That(actual.Stiffness.Structural, Is.EqualTo(expected.Stiffness.Structural));
@@ -44,10 +44,10 @@ namespace Drape.Tests
         [TestCase(Model.Xpbd)]
         public void SetParamsRoundTrips(Model model)
         {
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 4, 4))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 4, 4))
             {
-                Params p = World.DefaultParams();
+                Params p = NativeWorld.DefaultParams();
                 p.Model = model;
                 p.Stiffness = model == Model.Pbd ? new GroupValues(0.9f, 0.5f, 0.1f) : new GroupValues(500f, 250f, 50f);
                 p.Damping = 0.25f;
@@ -78,10 +78,10 @@ namespace Drape.Tests
         [Test]
         public void FixedSubstepsAreUsedByTheStep()
         {
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 4, 4))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 4, 4))
             {
-                Params p = World.DefaultParams();
+                Params p = NativeWorld.DefaultParams();
                 p.Substeps = 5;
                 p.Iterations = 2;
                 cloth.SetParams(p);

@@ -18,7 +18,7 @@ namespace Drape.Tests
         private const float Thickness = 0.03f; // about the particle spacing
         private const int FoldFrames = 120;
 
-        private static Cloth FoldCloth(World world)
+        private static NativeCloth FoldCloth(NativeWorld world)
         {
             var desc = new ClothDesc { Backend = Backend.Cpu, TotalMass = 0.3f };
             var grid = new GridDesc
@@ -29,7 +29,7 @@ namespace Drape.Tests
                 Height = 1f,
                 Origin = new Float3(0f, PinY, 0.5f), // default axes: columns +x, rows -z
             };
-            Cloth cloth = Cloth.CreateGrid(world, desc, grid);
+            NativeCloth cloth = NativeCloth.CreateGrid(world, desc, grid);
             var x = new float[cloth.VertexCount * 3];
             cloth.ReadPositions(x);
             double tilt = 30.0 * Math.PI / 180.0;
@@ -85,8 +85,8 @@ namespace Drape.Tests
         /// most non-neighbour pairs closer than thickness/2 seen at any sampled frame.</summary>
         private static float[] Fold(bool selfCollision, out int worstCloser)
         {
-            using (var world = new World(1))
-            using (Cloth cloth = FoldCloth(world))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = FoldCloth(world))
             {
                 if (selfCollision) cloth.SetSelfCollision(true, Thickness, 0.2f);
                 var x = new float[cloth.VertexCount * 3];
@@ -108,8 +108,8 @@ namespace Drape.Tests
         [Test]
         public void NewClothHasSelfCollisionOff()
         {
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 4, 4))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 4, 4))
             {
                 SelfCollisionDesc d = cloth.GetSelfCollision();
                 Assert.That(d.Enabled, Is.EqualTo(0u));
@@ -123,8 +123,8 @@ namespace Drape.Tests
         [Test]
         public void SettingRoundTrips()
         {
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 8, 8))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 8, 8))
             {
                 // StructSize left 0 on purpose: the wrapper sets it.
                 cloth.SetSelfCollision(new SelfCollisionDesc { Enabled = 1, Thickness = 0.05f, Friction = 0.3f });
@@ -150,8 +150,8 @@ namespace Drape.Tests
         [Test]
         public void BadInputThrowsWithTheNativeMessageAndChangesNothing()
         {
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 8, 8)) // rest diagonal 1.41 m: thickness <= 0.35 m
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 8, 8)) // rest diagonal 1.41 m: thickness <= 0.35 m
             {
                 cloth.SetSelfCollision(true, 0.05f, 0.25f);
                 var cases = new[]
@@ -185,9 +185,9 @@ namespace Drape.Tests
         [Test]
         public void DisposedClothThrowsObjectDisposed()
         {
-            using (var world = new World(1))
+            using (var world = new NativeWorld(1))
             {
-                Cloth cloth = TestScenes.HorizontalGrid(world, 4, 4);
+                NativeCloth cloth = TestScenes.HorizontalGrid(world, 4, 4);
                 cloth.Dispose();
                 Assert.Throws<ObjectDisposedException>(() => cloth.SetSelfCollision(true, 0.05f));
                 Assert.Throws<ObjectDisposedException>(() => cloth.GetSelfCollision());
@@ -197,9 +197,9 @@ namespace Drape.Tests
         [Test]
         public void GlesRefusesToEnable()
         {
-            if (!World.IsBackendAvailable(Backend.Gles)) Assert.Ignore("GLES is not available here");
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 8, 8, backend: Backend.Gles))
+            if (!NativeWorld.IsBackendAvailable(Backend.Gles)) Assert.Ignore("GLES is not available here");
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 8, 8, backend: Backend.Gles))
             {
                 var e = Assert.Throws<DrapeException>(() => cloth.SetSelfCollision(true, 0.05f));
                 Assert.That(e.Status, Is.EqualTo(Status.ErrorBackendUnavailable));

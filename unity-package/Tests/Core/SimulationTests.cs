@@ -9,7 +9,7 @@ namespace Drape.Tests
     {
         private const float Dt = 1f / 60f;
 
-        private static float[] Positions(Cloth cloth)
+        private static float[] Positions(NativeCloth cloth)
         {
             var xyz = new float[cloth.VertexCount * 3];
             cloth.ReadPositions(xyz);
@@ -21,8 +21,8 @@ namespace Drape.Tests
         {
             // drape.h: vertex (c, r) = origin + axis_u*width*c/(columns-1) + axis_v*height*r/(rows-1),
             // default axes +x and -z. 5 x 3 vertices, 2 m x 1 m, origin (1, 2, 3).
-            using (var world = new World(1))
-            using (Cloth cloth = Cloth.CreateGrid(world, new ClothDesc { TotalMass = 1f },
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = NativeCloth.CreateGrid(world, new ClothDesc { TotalMass = 1f },
                                                   new GridDesc { Columns = 5, Rows = 3, Width = 2f, Height = 1f,
                                                                  Origin = new Float3(1f, 2f, 3f) }))
             {
@@ -42,10 +42,10 @@ namespace Drape.Tests
         {
             // No air drag: every particle accelerates at g, so after t = 0.5 s the cloth has dropped
             // g t^2 / 2 = 1.226 m and kept its shape (springs stay at rest length).
-            using (var world = new World(2))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 8, 8, 10f, backend))
+            using (var world = new NativeWorld(2))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 8, 8, 10f, backend))
             {
-                Params p = World.DefaultParams();
+                Params p = NativeWorld.DefaultParams();
                 p.Model = model;
                 if (model == Model.Pbd) p.Stiffness = new GroupValues(1f, 1f, 0.5f);
                 p.AirDrag = 0f;
@@ -70,10 +70,10 @@ namespace Drape.Tests
             // may swing back up: a rigid pendulum of 1 m has a period of about 1.6 s), so over the
             // run the far edge must get well below its start; the pins must not move; and no vertex
             // may get further below the pins than the cloth reaches (1 m, allowing 100% stretch).
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 11, 11, 1f))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 11, 11, 1f))
             {
-                Params p = World.DefaultParams();
+                Params p = NativeWorld.DefaultParams();
                 p.Model = model;
                 if (model == Model.Pbd) p.Stiffness = new GroupValues(1f, 1f, 0.5f);
                 cloth.SetParams(p);
@@ -110,8 +110,8 @@ namespace Drape.Tests
         [Test]
         public void MovingAPinMovesTheVertex()
         {
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 5, 5, 1f))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 5, 5, 1f))
             {
                 var pins = new[] { new Pin(0, new Float3(0f, 1f, 0f)) };
                 cloth.SetPins(pins);
@@ -135,8 +135,8 @@ namespace Drape.Tests
         [Test]
         public void NormalsOfAFlatGridAreUnitAndVertical()
         {
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 4, 4))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 4, 4))
             {
                 var n = new float[cloth.VertexCount * 3];
                 cloth.ReadNormals(n);
@@ -153,10 +153,10 @@ namespace Drape.Tests
         public void WorldStepMatchesClothStepOnTheCpu()
         {
             // Cpu is deterministic: stepping through the world or the cloth gives the same bits.
-            using (var world1 = new World(1))
-            using (var world2 = new World(1))
-            using (Cloth a = TestScenes.HorizontalGrid(world1, 6, 6))
-            using (Cloth b = TestScenes.HorizontalGrid(world2, 6, 6))
+            using (var world1 = new NativeWorld(1))
+            using (var world2 = new NativeWorld(1))
+            using (NativeCloth a = TestScenes.HorizontalGrid(world1, 6, 6))
+            using (NativeCloth b = TestScenes.HorizontalGrid(world2, 6, 6))
             {
                 var inv = new float[36];
                 for (int v = 0; v < 36; ++v) inv[v] = v < 6 ? 0f : 1f;

@@ -10,18 +10,18 @@ namespace Drape.Tests
 
         /// <summary>A 12 x 12 cloth hanging from its two top corners, heavily air-damped so it settles
         /// within seconds, sleeping at 0.02 m/s for 0.5 s.</summary>
-        private static Cloth Hanging(World world)
+        private static NativeCloth Hanging(NativeWorld world)
         {
-            Cloth cloth = TestScenes.FacingGrid(world, 12, 12);
+            NativeCloth cloth = TestScenes.FacingGrid(world, 12, 12);
             cloth.SetPins(new[] { new Pin(0, new Float3(-0.5f, 0.5f, 0f)), new Pin(11, new Float3(0.5f, 0.5f, 0f)) });
-            Params p = World.DefaultParams();
+            Params p = NativeWorld.DefaultParams();
             p.AirDrag = 3f;
             cloth.SetParams(p);
             cloth.SetSleep(0.02f, 0.5f);
             return cloth;
         }
 
-        private static int StepsUntilAsleep(Cloth cloth, Collider[] colliders = null)
+        private static int StepsUntilAsleep(NativeCloth cloth, ColliderDesc[] colliders = null)
         {
             for (int i = 1; i <= 1200; ++i)
             {
@@ -35,8 +35,8 @@ namespace Drape.Tests
         [Test]
         public void HangingClothFallsAsleepStaysStillAndWakes()
         {
-            using (var world = new World(1))
-            using (Cloth cloth = Hanging(world))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = Hanging(world))
             {
                 Assert.That(cloth.GetStats().Sleeping, Is.EqualTo(0u));
                 int steps = StepsUntilAsleep(cloth);
@@ -61,11 +61,11 @@ namespace Drape.Tests
         [Test]
         public void UnchangedCollidersResentEveryFrameLetItSleepAndAMovedOneWakesIt()
         {
-            using (var world = new World(1))
-            using (Cloth cloth = Hanging(world))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = Hanging(world))
             {
                 // A sphere behind the cloth, out of its way: re-sent unchanged each frame as DrapeCloth does.
-                var colliders = new[] { Collider.Sphere(3, new Float3(0f, 0f, -2f), 0.2f) };
+                var colliders = new[] { ColliderDesc.Sphere(3, new Float3(0f, 0f, -2f), 0.2f) };
                 Assert.That(StepsUntilAsleep(cloth, colliders), Is.GreaterThan(0));
                 colliders[0].Position.X = 0.1f;
                 cloth.SetColliders(colliders);
@@ -77,8 +77,8 @@ namespace Drape.Tests
         [Test]
         public void ThresholdZeroNeverSleeps()
         {
-            using (var world = new World(1))
-            using (Cloth cloth = Hanging(world))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = Hanging(world))
             {
                 cloth.SetSleep(0f, 0.5f);
                 for (int i = 0; i < 600; ++i) cloth.Step(Dt);
@@ -89,8 +89,8 @@ namespace Drape.Tests
         [Test]
         public void BadSleepInputThrowsWithTheNativeMessage()
         {
-            using (var world = new World(1))
-            using (Cloth cloth = TestScenes.HorizontalGrid(world, 4, 4))
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = TestScenes.HorizontalGrid(world, 4, 4))
             {
                 var e = Assert.Throws<DrapeException>(() => cloth.SetSleep(-1f, 1f));
                 Assert.That(e.Status, Is.EqualTo(Status.ErrorInvalidArgument));

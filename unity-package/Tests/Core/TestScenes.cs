@@ -8,7 +8,7 @@ namespace Drape.Tests
     {
         /// <summary>A horizontal 1 m x 1 m grid at height <paramref name="y"/>: columns along +x,
         /// rows along -z (the drape.h default axes), 0.1 kg.</summary>
-        public static Cloth HorizontalGrid(World world, uint columns, uint rows, float y = 1f,
+        public static NativeCloth HorizontalGrid(NativeWorld world, uint columns, uint rows, float y = 1f,
                                            Backend backend = Backend.Cpu)
         {
             var desc = new ClothDesc { Backend = backend, TotalMass = 0.1f };
@@ -20,12 +20,12 @@ namespace Drape.Tests
                 Height = 1f,
                 Origin = new Float3(0f, y, 0f),
             };
-            return Cloth.CreateGrid(world, desc, grid);
+            return NativeCloth.CreateGrid(world, desc, grid);
         }
 
         /// <summary>A vertical grid in the z = 0 plane facing +z: columns along +x from x = -0.5,
         /// rows down -y from y = 0.5, 1 m x 1 m, 0.1 kg (vertex r*columns + c).</summary>
-        public static Cloth FacingGrid(World world, uint columns, uint rows)
+        public static NativeCloth FacingGrid(NativeWorld world, uint columns, uint rows)
         {
             var desc = new ClothDesc { Backend = Backend.Cpu, TotalMass = 0.1f };
             var grid = new GridDesc
@@ -38,7 +38,7 @@ namespace Drape.Tests
                 AxisU = new Float3(1f, 0f, 0f),
                 AxisV = new Float3(0f, -1f, 0f),
             };
-            return Cloth.CreateGrid(world, desc, grid);
+            return NativeCloth.CreateGrid(world, desc, grid);
         }
 
         /// <summary>A camera at (0, 0, <paramref name="distance"/>) looking down -z (OpenGL convention, as Unity's

@@ -4,7 +4,7 @@ namespace Drape.Core
 {
     /// <summary>A set of cloths stepped together (drape_world). Dispose it when done; disposing
     /// with cloths still alive defers the native destroy until the last cloth is disposed.</summary>
-    public sealed class World : IDisposable
+    public sealed class NativeWorld : IDisposable
     {
         /// <summary>The drape.h DRAPE_ABI_VERSION these bindings were written against.</summary>
         public const uint ExpectedAbiVersion = 1;
@@ -12,7 +12,7 @@ namespace Drape.Core
         private readonly WorldHandle _handle;
 
         /// <param name="threadCount">Workers for CpuThreaded including the caller; 0 = hardware count.</param>
-        public World(uint threadCount = 0)
+        public NativeWorld(uint threadCount = 0)
         {
             CheckAbi();
             var desc = new WorldDesc { StructSize = SizeOf.WorldDesc, ThreadCount = threadCount };

@@ -2,15 +2,15 @@ using System;
 
 namespace Drape.Core
 {
-    /// <summary>One simulated cloth (drape_cloth) in a <see cref="World"/>. Every method forwards to
+    /// <summary>One simulated cloth (drape_cloth) in a <see cref="NativeWorld"/>. Every method forwards to
     /// one C call; failures throw <see cref="DrapeException"/> with the native message. Step, Read,
     /// SetParams, SetPins and GetStats allocate nothing on success (steady state).</summary>
-    public sealed class Cloth : IDisposable
+    public sealed class NativeCloth : IDisposable
     {
         private readonly ClothHandle _handle;
         private readonly object _sync;
 
-        private Cloth(World world, IntPtr cloth)
+        private NativeCloth(NativeWorld world, IntPtr cloth)
         {
             _handle = new ClothHandle(world.Handle, cloth);
             _sync = world.Handle.Sync;
@@ -28,7 +28,7 @@ namespace Drape.Core
         public int VertexCount => (int)Info.VertexCount;
 
         /// <summary>Creates a rectangular grid cloth. StructSize fields are set here.</summary>
-        public static Cloth CreateGrid(World world, ClothDesc desc, GridDesc grid)
+        public static NativeCloth CreateGrid(NativeWorld world, ClothDesc desc, GridDesc grid)
         {
             if (world == null) throw new ArgumentNullException(nameof(world));
             desc.StructSize = SizeOf.ClothDesc;
@@ -39,12 +39,12 @@ namespace Drape.Core
                 NativeMethods.Check(NativeMethods.drape_cloth_create_grid(world.Handle, ref desc, ref grid, out cloth),
                                     "drape_cloth_create_grid");
             }
-            return new Cloth(world, cloth);
+            return new NativeCloth(world, cloth);
         }
 
         /// <summary>Creates a cloth from a triangle mesh: positions (xyz per vertex) and a triangle
         /// list. The native side copies both.</summary>
-        public static unsafe Cloth CreateMesh(World world, ClothDesc desc, ReadOnlySpan<float> positions,
+        public static unsafe NativeCloth CreateMesh(NativeWorld world, ClothDesc desc, ReadOnlySpan<float> positions,
                                               ReadOnlySpan<int> indices, float weldDistance)
         {
             if (world == null) throw new ArgumentNullException(nameof(world));
@@ -74,7 +74,7 @@ namespace Drape.Core
                                         "drape_cloth_create_mesh");
                 }
             }
-            return new Cloth(world, cloth);
+            return new NativeCloth(world, cloth);
         }
 
         /// <summary>Sets every parameter (StructSize is set here). Takes effect at the next step.</summary>
@@ -229,11 +229,11 @@ namespace Drape.Core
         /// <summary>Replaces the cloth's colliders (call once per frame with the current transforms;
         /// empty removes them all). StructSize of each element is set here. A collider keeps its Id
         /// from call to call so that its motion is swept across the next step. Allocates nothing.</summary>
-        public unsafe void SetColliders(Span<Collider> colliders)
+        public unsafe void SetColliders(Span<ColliderDesc> colliders)
         {
-            uint size = SizeOf.Collider;
+            uint size = SizeOf.ColliderDesc;
             for (int k = 0; k < colliders.Length; ++k) colliders[k].StructSize = size;
-            fixed (Collider* p = colliders)
+            fixed (ColliderDesc* p = colliders)
             {
                 lock (_sync)
                 {
@@ -270,13 +270,13 @@ namespace Drape.Core
         /// <summary>Drags the cloth with up to 16 touches seen through <paramref name="view"/> (paper
         /// eq. 9); the displacement is spread over the next step. Calls before a step add up.
         /// StructSize of the view and of each touch is set here. Allocates nothing.</summary>
-        public unsafe void Drag(in View view, Span<Touch> touches)
+        public unsafe void Drag(in View view, Span<TouchPoint> touches)
         {
             View v = view;
             v.StructSize = SizeOf.View;
-            uint size = SizeOf.Touch;
+            uint size = SizeOf.TouchPoint;
             for (int k = 0; k < touches.Length; ++k) touches[k].StructSize = size;
-            fixed (Touch* p = touches)
+            fixed (TouchPoint* p = touches)
             {
                 lock (_sync)
                 {
@@ -290,9 +290,9 @@ namespace Drape.Core
         /// origin bottom-left of the viewport) and moved by <paramref name="motion"/> px.</summary>
         public unsafe void Drag(in View view, Float2 position, Float2 motion, float amplitude = 200f, float sigma = 300f)
         {
-            Touch* touch = stackalloc Touch[1];
-            touch[0] = new Touch { Position = position, Motion = motion, Amplitude = amplitude, Sigma = sigma };
-            Drag(view, new Span<Touch>(touch, 1));
+            TouchPoint* touch = stackalloc TouchPoint[1];
+            touch[0] = new TouchPoint { Position = position, Motion = motion, Amplitude = amplitude, Sigma = sigma };
+            Drag(view, new Span<TouchPoint>(touch, 1));
         }
 
         /// <summary>Pick-and-hold: grabs the free vertex nearest on screen to <paramref name="position"/>
@@ -383,7 +383,7 @@ namespace Drape.Core
         /// <summary>GLES cloths: after every step the GPU writes positions and/or normals of every vertex
         /// into GL buffer <paramref name="glBuffer"/> (Unity: the name Mesh.GetNativeVertexBufferPtr
         /// returns on OpenGL ES), laid out by <paramref name="layout"/>; 0 stops writing. In Unity the
-        /// GL work runs at the render event (<see cref="World.GetUnityRenderEvent"/>).</summary>
+        /// GL work runs at the render event (<see cref="NativeWorld.GetUnityRenderEvent"/>).</summary>
         public void SetOutputBuffer(uint glBuffer, VertexLayout layout)
         {
             layout.StructSize = SizeOf.VertexLayout;
