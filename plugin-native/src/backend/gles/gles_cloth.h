@@ -23,7 +23,7 @@
 // GL work runs when the Unity render event fires (render_thread_tick) on the render thread.
 #pragma once
 
-#include <GLES3/gl3.h>
+#include "backend/gles/gl_loader.h"  // GL ES 3.0 + EGL, loaded at run time
 
 #include <deque>
 #include <functional>

@@ -1,0 +1,81 @@
+#include "backend/gles/gl_loader.h"
+
+#include <dlfcn.h>
+
+#include <mutex>
+#include <string>
+
+namespace drape::gles {
+
+#define DRAPE_GL_DEFINE(type, name) type name = nullptr;
+DRAPE_GL_FUNCTIONS(DRAPE_GL_DEFINE)
+#undef DRAPE_GL_DEFINE
+
+namespace {
+
+// Library names: Android has libGLESv3.so (API 18+) and libEGL.so; desktop Linux (Mesa,
+// libglvnd) has the versioned names. The first that loads is used; it is never unloaded.
+#if defined(__ANDROID__)
+const char* const kGlesLibraries[] = {"libGLESv3.so", "libGLESv2.so"};
+const char* const kEglLibraries[] = {"libEGL.so"};
+#else
+const char* const kGlesLibraries[] = {"libGLESv2.so.2", "libGLESv2.so"};
+const char* const kEglLibraries[] = {"libEGL.so.1", "libEGL.so"};
+#endif
+
+std::once_flag g_once;
+std::string g_error;
+PFNEGLGETCURRENTCONTEXTPROC g_get_current_context = nullptr;
+
+template <size_t N>
+void* open_first(const char* const (&names)[N]) {
+    for (const char* n : names)
+        if (void* h = dlopen(n, RTLD_NOW | RTLD_LOCAL)) return h;
+    return nullptr;
+}
+
+void load() {
+    void* egl = open_first(kEglLibraries);
+    void* gles = open_first(kGlesLibraries);
+    if (!egl || !gles) {
+        g_error = std::string("cannot load ") + (egl ? kGlesLibraries[0] : kEglLibraries[0]);
+        return;
+    }
+    auto get_proc = reinterpret_cast<PFNEGLGETPROCADDRESSPROC>(dlsym(egl, "eglGetProcAddress"));
+    auto current = reinterpret_cast<PFNEGLGETCURRENTCONTEXTPROC>(dlsym(egl, "eglGetCurrentContext"));
+    if (!get_proc || !current) {
+        g_error = "the EGL library lacks eglGetProcAddress or eglGetCurrentContext";
+        return;
+    }
+    // Core GL ES functions: exported by the GLES library; eglGetProcAddress as a fallback (it
+    // returns core functions only with EGL 1.5 or EGL_KHR_get_all_proc_addresses).
+    std::string missing;
+    auto resolve = [&](const char* name) -> void* {
+        void* p = dlsym(gles, name);
+        if (!p) p = reinterpret_cast<void*>(get_proc(name));
+        if (!p) missing += std::string(missing.empty() ? "" : ", ") + name;
+        return p;
+    };
+#define DRAPE_GL_RESOLVE(type, name) name = reinterpret_cast<type>(resolve(#name));
+    DRAPE_GL_FUNCTIONS(DRAPE_GL_RESOLVE)
+#undef DRAPE_GL_RESOLVE
+    if (!missing.empty()) {
+        g_error = "OpenGL ES functions not found: " + missing;
+        return;
+    }
+    g_get_current_context = current;  // only when everything resolved: the backend's gate
+}
+
+}  // namespace
+
+EGLContext eglGetCurrentContext() {
+    std::call_once(g_once, load);
+    return g_get_current_context ? g_get_current_context() : EGL_NO_CONTEXT;
+}
+
+const char* load_error() {
+    std::call_once(g_once, load);
+    return g_error.c_str();
+}
+
+}  // namespace drape::gles

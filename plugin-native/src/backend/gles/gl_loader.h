@@ -1,0 +1,107 @@
+// OpenGL ES 3.0 and EGL entry points of the GLES backend, loaded at run time (dlopen of the
+// system's GLES and EGL libraries + dlsym, eglGetProcAddress as fallback), so that libdrape and
+// the Unity source plug-in link against no GL library at build time.
+//
+// The pointers live in namespace drape::gles under the GL names, so the backend's unqualified
+// calls (glBindBuffer(...)) reach them and not the global prototypes. No prototypes are declared
+// (GL_GLES_PROTOTYPES 0, EGL_EGL_PROTOTYPES 0): a GL function missing from the lists below is a
+// compile error in the backend ("was not declared"); add it here, with its PFN type.
+//
+// Loading happens on the first eglGetCurrentContext() call, which every GL path makes first
+// (context_current, release_gl). If a library or a function is missing, eglGetCurrentContext()
+// keeps returning EGL_NO_CONTEXT, so the GLES backend reports itself unavailable; load_error()
+// says why.
+#pragma once
+
+#ifndef GL_GLES_PROTOTYPES
+#define GL_GLES_PROTOTYPES 0
+#endif
+#ifndef EGL_EGL_PROTOTYPES
+#define EGL_EGL_PROTOTYPES 0
+#endif
+#include <EGL/egl.h>
+#include <GLES3/gl3.h>
+
+#define DRAPE_GL_FUNCTIONS(X) \
+  X(PFNGLACTIVETEXTUREPROC, glActiveTexture) \
+  X(PFNGLATTACHSHADERPROC, glAttachShader) \
+  X(PFNGLBEGINTRANSFORMFEEDBACKPROC, glBeginTransformFeedback) \
+  X(PFNGLBINDATTRIBLOCATIONPROC, glBindAttribLocation) \
+  X(PFNGLBINDBUFFERPROC, glBindBuffer) \
+  X(PFNGLBINDBUFFERBASEPROC, glBindBufferBase) \
+  X(PFNGLBINDBUFFERRANGEPROC, glBindBufferRange) \
+  X(PFNGLBINDFRAMEBUFFERPROC, glBindFramebuffer) \
+  X(PFNGLBINDRENDERBUFFERPROC, glBindRenderbuffer) \
+  X(PFNGLBINDTEXTUREPROC, glBindTexture) \
+  X(PFNGLBINDVERTEXARRAYPROC, glBindVertexArray) \
+  X(PFNGLBUFFERDATAPROC, glBufferData) \
+  X(PFNGLBUFFERSUBDATAPROC, glBufferSubData) \
+  X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, glCheckFramebufferStatus) \
+  X(PFNGLCOMPILESHADERPROC, glCompileShader) \
+  X(PFNGLCOPYBUFFERSUBDATAPROC, glCopyBufferSubData) \
+  X(PFNGLCREATEPROGRAMPROC, glCreateProgram) \
+  X(PFNGLCREATESHADERPROC, glCreateShader) \
+  X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers) \
+  X(PFNGLDELETEFRAMEBUFFERSPROC, glDeleteFramebuffers) \
+  X(PFNGLDELETEPROGRAMPROC, glDeleteProgram) \
+  X(PFNGLDELETERENDERBUFFERSPROC, glDeleteRenderbuffers) \
+  X(PFNGLDELETESHADERPROC, glDeleteShader) \
+  X(PFNGLDELETETEXTURESPROC, glDeleteTextures) \
+  X(PFNGLDELETEVERTEXARRAYSPROC, glDeleteVertexArrays) \
+  X(PFNGLDISABLEPROC, glDisable) \
+  X(PFNGLDISABLEVERTEXATTRIBARRAYPROC, glDisableVertexAttribArray) \
+  X(PFNGLDRAWARRAYSPROC, glDrawArrays) \
+  X(PFNGLENABLEPROC, glEnable) \
+  X(PFNGLENABLEVERTEXATTRIBARRAYPROC, glEnableVertexAttribArray) \
+  X(PFNGLENDTRANSFORMFEEDBACKPROC, glEndTransformFeedback) \
+  X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, glFramebufferRenderbuffer) \
+  X(PFNGLGENBUFFERSPROC, glGenBuffers) \
+  X(PFNGLGENFRAMEBUFFERSPROC, glGenFramebuffers) \
+  X(PFNGLGENRENDERBUFFERSPROC, glGenRenderbuffers) \
+  X(PFNGLGENTEXTURESPROC, glGenTextures) \
+  X(PFNGLGENVERTEXARRAYSPROC, glGenVertexArrays) \
+  X(PFNGLGETBUFFERPARAMETERIVPROC, glGetBufferParameteriv) \
+  X(PFNGLGETERRORPROC, glGetError) \
+  X(PFNGLGETINTEGERVPROC, glGetIntegerv) \
+  X(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog) \
+  X(PFNGLGETPROGRAMIVPROC, glGetProgramiv) \
+  X(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog) \
+  X(PFNGLGETSHADERIVPROC, glGetShaderiv) \
+  X(PFNGLGETSTRINGPROC, glGetString) \
+  X(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation) \
+  X(PFNGLISBUFFERPROC, glIsBuffer) \
+  X(PFNGLISENABLEDPROC, glIsEnabled) \
+  X(PFNGLLINKPROGRAMPROC, glLinkProgram) \
+  X(PFNGLMAPBUFFERRANGEPROC, glMapBufferRange) \
+  X(PFNGLPIXELSTOREIPROC, glPixelStorei) \
+  X(PFNGLRENDERBUFFERSTORAGEPROC, glRenderbufferStorage) \
+  X(PFNGLSHADERSOURCEPROC, glShaderSource) \
+  X(PFNGLTEXPARAMETERIPROC, glTexParameteri) \
+  X(PFNGLTEXSTORAGE2DPROC, glTexStorage2D) \
+  X(PFNGLTEXSUBIMAGE2DPROC, glTexSubImage2D) \
+  X(PFNGLTRANSFORMFEEDBACKVARYINGSPROC, glTransformFeedbackVaryings) \
+  X(PFNGLUNIFORM1FPROC, glUniform1f) \
+  X(PFNGLUNIFORM1FVPROC, glUniform1fv) \
+  X(PFNGLUNIFORM1IPROC, glUniform1i) \
+  X(PFNGLUNIFORM1IVPROC, glUniform1iv) \
+  X(PFNGLUNIFORM3FVPROC, glUniform3fv) \
+  X(PFNGLUNIFORM4FVPROC, glUniform4fv) \
+  X(PFNGLUNMAPBUFFERPROC, glUnmapBuffer) \
+  X(PFNGLUSEPROGRAMPROC, glUseProgram) \
+  X(PFNGLVERTEXATTRIBIPOINTERPROC, glVertexAttribIPointer) \
+  X(PFNGLVERTEXATTRIBPOINTERPROC, glVertexAttribPointer) \
+
+namespace drape::gles {
+
+#define DRAPE_GL_DECLARE(type, name) extern type name;
+DRAPE_GL_FUNCTIONS(DRAPE_GL_DECLARE)
+#undef DRAPE_GL_DECLARE
+
+/// Returns the current EGL context; loads the GL and EGL entry points on its first call (thread
+/// safe). EGL_NO_CONTEXT when they could not be loaded (see load_error()).
+EGLContext eglGetCurrentContext();
+
+/// Why loading failed (loads first if needed); empty when it succeeded.
+const char* load_error();
+
+}  // namespace drape::gles
