@@ -262,3 +262,67 @@ TEST(Api, InfoCountsThe12SpringStencil) {
     EXPECT_EQ(info.spring_count[DRAPE_GROUP_BEND], 3u * 4 + 5 * 2);
     EXPECT_EQ(info.triangle_count, 2u * 4 * 3);
 }
+
+// A dt shorter than DRAPE_MIN_DT is valid and does nothing: no UNSTABLE, nothing moves, and a pin
+// move requested before it is made by the next real step.
+TEST(Api, TinyDtIsANoOp) {
+    WorldPtr w = make_world(1);
+    drape_cloth* c = make_grid(w.get(), grid_desc(4, 4, 1, 1), 1);
+    drape_pin pin{sizeof pin, 0, {0, 0, 0}};
+    ASSERT_DRAPE_OK(drape_cloth_set_pins(c, &pin, 1));
+    ASSERT_DRAPE_OK(drape_cloth_step(c, 1 / 60.f));
+    const std::vector<float> before = positions(c);
+    pin.position[0] = 0.05f;
+    ASSERT_DRAPE_OK(drape_cloth_set_pins(c, &pin, 1));
+    for (float dt : {1e-30f, std::numeric_limits<float>::denorm_min(), 1e-7f, DRAPE_MIN_DT * 0.99f}) {
+        EXPECT_DRAPE_OK(drape_cloth_step(c, dt)) << "dt " << dt;
+        EXPECT_DRAPE_OK(drape_world_step(w.get(), dt)) << "dt " << dt;
+    }
+    EXPECT_EQ(positions(c), before);
+    EXPECT_EQ(stats_of(c).unstable_steps, 0u);
+    ASSERT_DRAPE_OK(drape_cloth_step(c, DRAPE_MIN_DT));  // the shortest real step
+    ASSERT_DRAPE_OK(drape_cloth_step(c, 1 / 60.f));
+    EXPECT_NEAR(positions(c)[0], 0.05f, 1e-6f);
+    EXPECT_EQ(drape_cloth_step(c, 0.0f), DRAPE_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(drape_cloth_step(c, -1e-30f), DRAPE_ERROR_INVALID_ARGUMENT);
+}
+
+// A step that diverges restores the state, but the pin move asked for before it still happens at
+// the next step (it is not silently dropped with the rolled-back state).
+TEST(Api, PinMoveBeforeARolledBackStepIsKept) {
+    WorldPtr w = make_world(1);
+    drape_cloth* c = make_grid(w.get(), grid_desc(4, 4, 1, 1), 1);
+    drape_pin pin{sizeof pin, 0, {0, 0, 0}};
+    ASSERT_DRAPE_OK(drape_cloth_set_pins(c, &pin, 1));
+    ASSERT_DRAPE_OK(drape_cloth_step(c, 1 / 60.f));
+    drape_params good{};
+    ASSERT_DRAPE_OK(drape_params_default(&good));
+    drape_params wild = good;  // explicit springs far beyond their stability bound: diverges
+    wild.model = DRAPE_MODEL_MASS_SPRING;
+    for (float& k : wild.stiffness) k = 1e9f;
+    wild.substeps = 1;
+    wild.max_stretch = 0;  // no tethers to hold it together
+    ASSERT_DRAPE_OK(drape_cloth_set_params(c, &wild));
+    std::vector<float> stretched = positions(c);  // every spring at twice its rest length
+    for (float& x : stretched) x *= 2.0f;
+    ASSERT_DRAPE_OK(drape_cloth_set_positions(c, stretched.data(), 16));
+    pin.position[0] = 0.05f;
+    ASSERT_DRAPE_OK(drape_cloth_set_pins(c, &pin, 1));
+    ASSERT_EQ(drape_cloth_step(c, 1 / 60.f), DRAPE_ERROR_UNSTABLE);
+    EXPECT_NEAR(positions(c)[0], 0.0f, 1e-7f);  // rolled back
+    ASSERT_DRAPE_OK(drape_cloth_set_params(c, &good));
+    ASSERT_DRAPE_OK(drape_cloth_step(c, 1 / 60.f));
+    EXPECT_NEAR(positions(c)[0], 0.05f, 1e-6f) << "the pin move was dropped with the rolled-back step";
+}
+
+TEST(Api, UnityRenderEventChecksItsPointers) {
+    void* callback = nullptr;
+    int32_t id = 0;
+    EXPECT_EQ(drape_unity_render_event(nullptr, nullptr), DRAPE_ERROR_NULL_POINTER);
+    expect_message("out_callback");
+    EXPECT_EQ(drape_unity_render_event(&callback, nullptr), DRAPE_ERROR_NULL_POINTER);
+    expect_message("out_event_id");
+    EXPECT_DRAPE_OK(drape_unity_render_event(&callback, &id));
+    EXPECT_NE(callback, nullptr);
+    EXPECT_STREQ(drape_last_error(), "");
+}

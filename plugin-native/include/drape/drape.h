@@ -44,6 +44,12 @@ extern "C" {
 /** Bumped on any incompatible change of this header. */
 #define DRAPE_ABI_VERSION 1
 
+/** Longest step, s: drape_world_step / drape_cloth_step refuse dt > DRAPE_MAX_DT. */
+#define DRAPE_MAX_DT 1.0f
+/** Shortest step that does anything, s: 0 < dt < DRAPE_MIN_DT is accepted (DRAPE_OK) and is a
+ *  no-op (nothing moves; pending pin moves, drag and collider motion wait for the next step). */
+#define DRAPE_MIN_DT 1e-6f
+
 /* C# twin: Drape.Core.Status */
 typedef enum drape_status {
     DRAPE_OK = 0,

@@ -3,14 +3,18 @@
 // object unchanged.
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <mutex>
+#include <stdexcept>
 #include <new>
 #include <string>
 #include <thread>
 #include <unordered_map>
+#include <vector>
 
 #include "core/cloth.h"
-#include "core/drag.h"  // issue 5
+#include "api/last_error.h"
+#include "core/drag.h"
 #include "core/params.h"
 #include "core/topology.h"
 #include "drape/drape.h"
@@ -34,26 +38,82 @@ drape_status ok() {
     return DRAPE_OK;
 }
 
-// Live handles. A pointer the library did not hand out (or already destroyed) is refused
-// before it is dereferenced.
-enum class Kind { World, Cloth };
-std::mutex g_handles_mutex;
-std::unordered_map<const void*, Kind>& handles() {
-    static std::unordered_map<const void*, Kind> map;
-    return map;
-}
-bool live(const void* p, Kind kind) {
-    std::lock_guard<std::mutex> lock(g_handles_mutex);
-    auto it = handles().find(p);
-    return it != handles().end() && it->second == kind;
-}
-void track(const void* p, Kind kind) {
-    std::lock_guard<std::mutex> lock(g_handles_mutex);
-    handles()[p] = kind;
-}
-void untrack(const void* p) {
-    std::lock_guard<std::mutex> lock(g_handles_mutex);
-    handles().erase(p);
+// Handles are ids, not addresses (Box2D v3's b2BodyId): a slot index, the object kind and the
+// slot's generation packed into a pointer-sized value. Destroying an object bumps its slot's
+// generation, so its old handle stays refused when the slot (or the object's memory) is reused.
+// A slot whose generation would wrap is retired instead of reused, so two handles never alias.
+enum class Kind : uintptr_t { World = 1, Cloth = 2 };
+
+class HandleTable {
+public:
+    static constexpr unsigned kHalf = sizeof(uintptr_t) * 4;  // 32 bits on 64-bit platforms
+    static constexpr unsigned kIndexBits = kHalf - 2;         // the other 2: the kind
+    static constexpr uintptr_t kIndexMask = (uintptr_t(1) << kIndexBits) - 1;
+    static constexpr uintptr_t kGenerationMask = (uintptr_t(1) << kHalf) - 1;
+
+    /// A handle for a new object. Throws std::bad_alloc (or length_error when out of slots).
+    uintptr_t add(void* object, Kind kind) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        uint32_t index;
+        if (!free_.empty()) {
+            index = free_.back();
+        } else {
+            if (slots_.size() > kIndexMask) throw std::length_error("no free handle slot");
+            index = uint32_t(slots_.size());
+            slots_.emplace_back();
+            free_.reserve(slots_.capacity());  // remove() then never allocates
+            free_.push_back(index);
+        }
+        Slot& s = slots_[index];
+        const uintptr_t handle = encode(index, kind, s.generation);
+        by_object_.emplace(object, handle);  // may throw: nothing changed yet
+        free_.pop_back();
+        s.object = object;
+        s.kind = kind;
+        return handle;
+    }
+    /// The live object of that kind the handle names, or nullptr.
+    void* find(const void* handle, Kind kind) {
+        const uintptr_t h = reinterpret_cast<uintptr_t>(handle);
+        if (Kind((h >> kIndexBits) & 3) != kind) return nullptr;
+        const uintptr_t index = h & kIndexMask;
+        const uintptr_t generation = (h >> kHalf) & kGenerationMask;
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (index >= slots_.size()) return nullptr;
+        const Slot& s = slots_[index];
+        return s.object && s.kind == kind && s.generation == generation ? s.object : nullptr;
+    }
+    /// Frees the slot of a live object: its handle is refused from now on.
+    void remove(const void* object) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        auto it = by_object_.find(object);
+        if (it == by_object_.end()) return;
+        const uintptr_t index = it->second & kIndexMask;
+        by_object_.erase(it);
+        Slot& s = slots_[index];
+        s.object = nullptr;
+        s.generation = (s.generation + 1) & kGenerationMask;
+        if (s.generation != 0) free_.push_back(uint32_t(index));  // 0: wrapped, slot retired
+    }
+
+private:
+    struct Slot {
+        void* object = nullptr;
+        Kind kind = Kind::World;
+        uintptr_t generation = 1;
+    };
+    static uintptr_t encode(uint32_t index, Kind kind, uintptr_t generation) {
+        return (generation << kHalf) | (uintptr_t(kind) << kIndexBits) | index;
+    }
+    std::mutex mutex_;
+    std::vector<Slot> slots_;
+    std::vector<uint32_t> free_;
+    std::unordered_map<const void*, uintptr_t> by_object_;  // live object -> its handle
+};
+
+HandleTable& handles() {
+    static HandleTable table;  // constructed on first use, never destroyed before the last call
+    return table;
 }
 
 // Limits on sizes: far above any game cloth, low enough that sizes cannot overflow.
@@ -93,21 +153,22 @@ bool bounded3(const float* v) {
     return std::fabs(v[0]) <= kMaxCoordinate && std::fabs(v[1]) <= kMaxCoordinate && std::fabs(v[2]) <= kMaxCoordinate;
 }
 
+World* as_world(const drape_world* w) { return static_cast<World*>(handles().find(w, Kind::World)); }
+Cloth* as_cloth(const drape_cloth* c) { return static_cast<Cloth*>(handles().find(c, Kind::Cloth)); }
+
 drape_status check_world(const drape_world* w) {
     DRAPE_REQUIRE(w != nullptr, DRAPE_ERROR_NULL_POINTER, "world is NULL");
-    DRAPE_REQUIRE(live(w, Kind::World), DRAPE_ERROR_INVALID_HANDLE, "world is not a live drape_world");
+    DRAPE_REQUIRE(as_world(w) != nullptr, DRAPE_ERROR_INVALID_HANDLE,
+                  "world is not a live drape_world (destroyed, or not a world handle)");
     return DRAPE_OK;
 }
 
 drape_status check_cloth(const drape_cloth* c) {
     DRAPE_REQUIRE(c != nullptr, DRAPE_ERROR_NULL_POINTER, "cloth is NULL");
-    DRAPE_REQUIRE(live(c, Kind::Cloth), DRAPE_ERROR_INVALID_HANDLE, "cloth is not a live drape_cloth");
+    DRAPE_REQUIRE(as_cloth(c) != nullptr, DRAPE_ERROR_INVALID_HANDLE,
+                  "cloth is not a live drape_cloth (destroyed, its world destroyed, or not a cloth handle)");
     return DRAPE_OK;
 }
-
-World* as_world(drape_world* w) { return reinterpret_cast<World*>(w); }
-Cloth* as_cloth(drape_cloth* c) { return reinterpret_cast<Cloth*>(c); }
-const Cloth* as_cloth(const drape_cloth* c) { return reinterpret_cast<const Cloth*>(c); }
 
 drape_status check_cloth_desc(const drape_cloth_desc* desc) {
     DRAPE_CHECK_STRUCT(desc, drape_cloth_desc);
@@ -188,9 +249,17 @@ drape_status finish_create(drape_world* world, const drape_cloth_desc* desc, Top
     }
 #endif
     if (!cloth) cloth = new Cloth(w, drape_backend(desc->backend), std::move(topo));
+    std::unique_ptr<Cloth> owned(cloth);
     w.add(cloth);
-    track(cloth, Kind::Cloth);
-    *out = reinterpret_cast<drape_cloth*>(cloth);
+    uintptr_t handle = 0;
+    try {
+        handle = handles().add(cloth, Kind::Cloth);
+    } catch (...) {
+        w.remove(cloth);
+        throw;
+    }
+    owned.release();
+    *out = reinterpret_cast<drape_cloth*>(handle);
     return ok();
 }
 
@@ -215,6 +284,11 @@ drape_status check_xyz_array(const float* xyz, uint32_t count, const char* what)
 }
 
 }  // namespace
+
+drape_status drape::set_last_error(drape_status status, const char* message) {
+    t_last_error = status == DRAPE_OK ? std::string() : std::string(message ? message : "");
+    return status;
+}
 
 extern "C" {
 
@@ -246,9 +320,9 @@ drape_status drape_world_create(const drape_world_desc* desc, drape_world** out_
     return guarded([&] {
         uint32_t threads = desc->thread_count;
         if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-        auto* world = new World(threads);
-        track(world, Kind::World);
-        *out_world = reinterpret_cast<drape_world*>(world);
+        auto world = std::make_unique<World>(threads);
+        *out_world = reinterpret_cast<drape_world*>(handles().add(world.get(), Kind::World));
+        world.release();
         return ok();
     });
 }
@@ -257,8 +331,8 @@ drape_status drape_world_destroy(drape_world* world) {
     if (drape_status s = check_world(world)) return s;
     return guarded([&] {
         World* w = as_world(world);
-        for (Cloth* c : w->cloths()) untrack(c);
-        untrack(w);
+        for (Cloth* c : w->cloths()) handles().remove(c);
+        handles().remove(w);
         delete w;
         return ok();
     });
@@ -267,7 +341,8 @@ drape_status drape_world_destroy(drape_world* world) {
 drape_status drape_world_step(drape_world* world, float dt) {
     if (drape_status s = check_world(world)) return s;
     DRAPE_REQUIRE(std::isfinite(dt), DRAPE_ERROR_NOT_FINITE, "dt is NaN or infinite");
-    DRAPE_REQUIRE(dt > 0 && dt <= 1, DRAPE_ERROR_INVALID_ARGUMENT, "dt must be in (0, 1] s");
+    DRAPE_REQUIRE(dt > 0 && dt <= DRAPE_MAX_DT, DRAPE_ERROR_INVALID_ARGUMENT, "dt must be in (0, 1] s");
+    if (dt < DRAPE_MIN_DT) return ok();  // too short to represent: a no-op (drape.h)
     return guarded([&] {
         Result r = as_world(world)->step(dt);
         return r.ok() ? ok() : fail(r.status, r.message);
@@ -329,7 +404,7 @@ drape_status drape_cloth_destroy(drape_cloth* cloth) {
     return guarded([&] {
         Cloth* c = as_cloth(cloth);
         c->world().remove(c);
-        untrack(c);
+        handles().remove(c);
         delete c;
         return ok();
     });
@@ -429,7 +504,8 @@ drape_status drape_cloth_set_velocities(drape_cloth* cloth, const float* velocit
 drape_status drape_cloth_step(drape_cloth* cloth, float dt) {
     if (drape_status s = check_cloth(cloth)) return s;
     DRAPE_REQUIRE(std::isfinite(dt), DRAPE_ERROR_NOT_FINITE, "dt is NaN or infinite");
-    DRAPE_REQUIRE(dt > 0 && dt <= 1, DRAPE_ERROR_INVALID_ARGUMENT, "dt must be in (0, 1] s");
+    DRAPE_REQUIRE(dt > 0 && dt <= DRAPE_MAX_DT, DRAPE_ERROR_INVALID_ARGUMENT, "dt must be in (0, 1] s");
+    if (dt < DRAPE_MIN_DT) return ok();  // too short to represent: a no-op (drape.h)
     return guarded([&] {
         Result r = as_cloth(cloth)->step(dt);
         return r.ok() ? ok() : fail(r.status, r.message);

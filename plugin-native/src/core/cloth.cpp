@@ -366,7 +366,7 @@ Result Cloth::step(float dt) {
         std::memcpy(buffers_[disp_].data(), backup_disp_.data(), n * sizeof(Particle));
         h_prev_ = backup_h_prev;
         fresh_ = backup_fresh;
-        for (uint32_t k : kinematic_) kinematic_target_[k] = glm::vec3(buffers_[cur_][k]);
+        // kinematic_target_ keeps the requested pin and grab moves: the next step makes them.
         ++stats_.unstable_steps;
         interaction_end_step(dt, true);  // issue 5
         return {DRAPE_ERROR_UNSTABLE,

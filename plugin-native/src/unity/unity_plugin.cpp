@@ -5,6 +5,7 @@
 
 #include <atomic>
 
+#include "api/last_error.h"
 #include "drape/drape.h"
 #ifdef DRAPE_WITH_GLES
 #include "backend/gles/gles_cloth.h"
@@ -72,10 +73,11 @@ DRAPE_UNITY_EXPORT void DRAPE_UNITY_API UnityPluginUnload() {
 }
 
 drape_status drape_unity_render_event(void** out_callback, int32_t* out_event_id) {
-    if (!out_callback || !out_event_id) return DRAPE_ERROR_NULL_POINTER;
+    if (!out_callback) return drape::set_last_error(DRAPE_ERROR_NULL_POINTER, "out_callback is NULL");
+    if (!out_event_id) return drape::set_last_error(DRAPE_ERROR_NULL_POINTER, "out_event_id is NULL");
     *out_callback = reinterpret_cast<void*>(&on_render_event);
     *out_event_id = g_event_id.load();
-    return DRAPE_OK;
+    return drape::set_last_error(DRAPE_OK, nullptr);
 }
 
 }  // extern "C"
