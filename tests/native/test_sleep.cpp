@@ -57,10 +57,12 @@ TEST(Sleep, AsleepClothDoesNoWorkAndKeepsItsBits) {
     EXPECT_EQ(0, std::memcmp(before.data(), after.data(), before.size() * 4));
     const drape_stats s = stats_of(c);
     EXPECT_EQ(s.sleeping, 1u);
+    // "No work" is judged by the work done (no substep ran), not by the clock: a timing verdict
+    // flakes on a loaded machine. The times are printed for information only.
     EXPECT_EQ(s.substeps, 0u);
+    EXPECT_EQ(s.step_ms, 0.0f);  // set, not measured: the asleep path returns before the timer
     std::printf("[ measured ] 32x32 cloth fell asleep after %.2f s; step %.1f us awake, %.3f us asleep (%.0fx)\n", t,
                 awake * 1e6, asleep * 1e6, awake / asleep);
-    EXPECT_LT(asleep, awake / 100);
     // drape_world_step skips it as well.
     ASSERT_DRAPE_OK(drape_world_step(w.get(), 1.0f / 60));
     const std::vector<float> world_after = positions(c);

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <set>
 
@@ -508,9 +509,17 @@ void GlesCloth::compute_cpu_stats() {
     stats_.rms_strain = count ? float(std::sqrt(sum_sq / count)) : 0.0f;
 }
 
-std::string GlesCloth::variant_defines(int pass) const {
+const std::string& GlesCloth::variant_defines(int pass) const {
+    // Built in a kept buffer (appends within its capacity): looking a program up each pass of
+    // each step allocates nothing after the first frame.
     const bool xpbd = params_.model == DRAPE_MODEL_XPBD;
-    std::string d;
+    std::string& d = defines_scratch_;
+    d.clear();
+    auto define = [&d](const char* name, long value) {
+        char line[96];
+        const int n = std::snprintf(line, sizeof line, "#define %s %ld\n", name, value);
+        d.append(line, size_t(n));
+    };
     if (pass == kMassSpring) d += "#define DRAPE_PASS_MASS_SPRING 1\n";
     if (pass == kPredict) d += "#define DRAPE_PASS_PREDICT 1\n";
     if (pass == kConstraint || pass == kCommit) d += "#define DRAPE_PASS_CONSTRAINT 1\n";
@@ -519,19 +528,19 @@ std::string GlesCloth::variant_defines(int pass) const {
     if (pass == kInteract) {
         d += "#define DRAPE_PASS_INTERACT 1\n";
         if (drag_variant_) d += "#define DRAPE_DRAG 1\n";
-        d += "#define DRAPE_SHAPES " + std::to_string(shape_capacity_) + "\n";
+        define("DRAPE_SHAPES", long(shape_capacity_));
     }
     if (pass == kPredict && params_.model == DRAPE_MODEL_PBD && params_.damping > 0) d += "#define DRAPE_DASHPOT 1\n";
     if (xpbd) d += "#define DRAPE_XPBD 1\n";
     if (pass < kConstraint && !kinematic_.empty()) d += "#define DRAPE_KINEMATIC 1\n";
-    d += "#define DRAPE_SLOTS " + std::to_string(topo_.nbr.slots) + "\n";
-    d += "#define DRAPE_RECORD " + std::to_string(record_vec4()) + "\n";
-    d += "#define DRAPE_LAMBDA_VEC4 " + std::to_string(xpbd ? record_vec4() - 1 : 1) + "\n";
+    define("DRAPE_SLOTS", long(topo_.nbr.slots));
+    define("DRAPE_RECORD", long(record_vec4()));
+    define("DRAPE_LAMBDA_VEC4", long(xpbd ? record_vec4() - 1 : 1));
     return d;
 }
 
 Result GlesCloth::program(int pass, Program** out) {
-    const std::string defines = variant_defines(pass);
+    const std::string& defines = variant_defines(pass);
     auto it = programs_.find(defines);
     if (it == programs_.end()) {
         // Mass-spring and commit: positions and displacements into two buffers (separate attribs);

@@ -131,7 +131,8 @@ private:
     Result write_output();
     void compute_cpu_stats();
     uint32_t record_vec4() const;
-    std::string variant_defines(int pass) const;
+    const std::string& variant_defines(int pass) const;  ///< in defines_scratch_
+    mutable std::string defines_scratch_;
 
     const Mode mode_;
     std::mutex mutex_;
