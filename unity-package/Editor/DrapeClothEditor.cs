@@ -47,8 +47,7 @@ namespace Drape.Editing
 
             if (cloth.Model == Model.MassSpring && vertexCount > 0 && dt > 0f)
             {
-                var k = new GroupValues(cloth.StructuralStiffness, cloth.ShearStiffness, cloth.BendStiffness);
-                int needed = Stability.MassSpringSubstepsNeeded(k, cloth.TotalMass / vertexCount, dt);
+                long needed = MassSpringSubstepsNeeded(cloth, dt);
                 if (cloth.Substeps > 0 && cloth.Substeps < needed)
                     list.Add("Mass-spring at this stiffness and mass is unstable with " + cloth.Substeps +
                              " substeps at dt = " + dt.ToString("F4") + " s: it needs about " + needed +
@@ -100,6 +99,41 @@ namespace Drape.Editing
             if (cloth.PinMode == DrapePinMode.None)
                 list.Add("No pins: the cloth will fall freely.");
             return list;
+        }
+
+        /// <summary>Fewest substeps within the explicit stability bound, from the native library (the
+        /// computation the cloth itself runs); 0 if the shape or settings are refused.</summary>
+        private static long MassSpringSubstepsNeeded(DrapeCloth cloth, float dt)
+        {
+            Params p = NativeWorld.DefaultParams();
+            p.Model = Model.MassSpring;
+            p.Stiffness = new GroupValues(cloth.StructuralStiffness, cloth.ShearStiffness, cloth.BendStiffness);
+            p.Damping = cloth.Damping;
+            try
+            {
+                if (cloth.Source == DrapeShapeSource.GeneratedGrid)
+                {
+                    var grid = new GridDesc { Columns = (uint)cloth.Columns, Rows = (uint)cloth.Rows,
+                                              Width = cloth.Size.x, Height = cloth.Size.y };
+                    return Stability.ForGrid(grid, cloth.TotalMass, p, dt).StableSubsteps;
+                }
+                var filter = cloth.GetComponent<MeshFilter>();
+                Mesh mesh = filter != null ? filter.sharedMesh : null;
+                if (mesh == null) return 0;
+                Vector3[] v = mesh.vertices;
+                var flat = new float[v.Length * 3];
+                for (int i = 0; i < v.Length; ++i)
+                {
+                    flat[3 * i] = v[i].x;
+                    flat[3 * i + 1] = v[i].y;
+                    flat[3 * i + 2] = v[i].z;
+                }
+                return Stability.ForMesh(flat, mesh.triangles, cloth.WeldDistance, cloth.TotalMass, p, dt).StableSubsteps;
+            }
+            catch (DrapeException)
+            {
+                return 0;  // invalid settings: other warnings and the inspector's ranges say why
+            }
         }
 
         private static int MeshVertexCount(DrapeCloth cloth)

@@ -15,6 +15,7 @@
 #include "core/cloth.h"
 #include "api/last_error.h"
 #include "core/drag.h"
+#include "core/abi_tables.h"
 #include "core/params.h"
 #include "core/topology.h"
 #include "drape/drape.h"
@@ -126,13 +127,78 @@ constexpr float kMaxMass = 1e6f;        // kg
         if (!(cond)) return fail(status, msg); \
     } while (0)
 
-#define DRAPE_CHECK_STRUCT(ptr, type)                                                          \
-    do {                                                                                       \
-        DRAPE_REQUIRE((ptr) != nullptr, DRAPE_ERROR_NULL_POINTER, #ptr " is NULL");            \
-        DRAPE_REQUIRE((ptr)->struct_size == sizeof(type), DRAPE_ERROR_STRUCT_SIZE,             \
-                      #ptr "->struct_size is " + std::to_string((ptr)->struct_size) +          \
-                          ", this library expects sizeof(" #type ") = " + std::to_string(sizeof(type))); \
-    } while (0)
+// ---- struct_size: every size a struct has shipped (core/abi_tables.h, from tools/abi/abi.py) ----
+
+template <class T>
+bool shipped_size(uint32_t size) {
+    for (uint32_t s : abi::Layout<T>::sizes)
+        if (s == size) return true;
+    return false;
+}
+
+template <class T>
+std::string struct_size_problem(const char* what, uint32_t size) {
+    std::string sizes;
+    for (uint32_t s : abi::Layout<T>::sizes) sizes += (sizes.empty() ? "" : " or ") + std::to_string(s);
+    return std::string(what) + "->struct_size is " + std::to_string(size) + ", " + abi::Layout<T>::name +
+           " has shipped with size " + sizes + " (set it to sizeof(" + abi::Layout<T>::name + "))";
+}
+
+// A caller's struct of any shipped revision, as the current one: its fields over the defaults.
+template <class T>
+drape_status read_struct(const T* in, const char* what, T* out) {
+    DRAPE_REQUIRE(in != nullptr, DRAPE_ERROR_NULL_POINTER, std::string(what) + " is NULL");
+    DRAPE_REQUIRE(shipped_size<T>(in->struct_size), DRAPE_ERROR_STRUCT_SIZE, struct_size_problem<T>(what, in->struct_size));
+    *out = abi::Layout<T>::defaults();
+    std::memcpy(static_cast<void*>(out), in, in->struct_size);
+    out->struct_size = sizeof(T);
+    return DRAPE_OK;
+}
+
+// Validates *ptr's struct_size and points ptr at a current-revision copy (older revisions get
+// the defaults for the fields they lack). Use once per struct parameter, before reading it.
+#define DRAPE_CHECK_STRUCT(ptr, type)                                                   \
+    type ptr##_current_;                                                                \
+    if (drape_status ptr##_status_ = read_struct<type>(ptr, #ptr, &ptr##_current_)) \
+        return ptr##_status_;                                                           \
+    ptr = &ptr##_current_
+
+// An array of structs of one shipped revision (stride = the first element's struct_size), as
+// current-revision copies.
+template <class T>
+drape_status read_array(const T* in, uint32_t count, const char* what, std::vector<T>* out) {
+    out->clear();
+    if (count == 0) return DRAPE_OK;
+    const uint32_t size = in->struct_size;
+    DRAPE_REQUIRE(shipped_size<T>(size), DRAPE_ERROR_STRUCT_SIZE,
+                  struct_size_problem<T>((std::string(what) + "[0]").c_str(), size));
+    out->resize(count);
+    const char* bytes = reinterpret_cast<const char*>(in);
+    for (uint32_t k = 0; k < count; ++k) {
+        const T* e = reinterpret_cast<const T*>(bytes + size_t(k) * size);
+        DRAPE_REQUIRE(e->struct_size == size, DRAPE_ERROR_STRUCT_SIZE,
+                      std::string(what) + "[" + std::to_string(k) + "]->struct_size is " + std::to_string(e->struct_size) +
+                          ", element 0's is " + std::to_string(size) + " (one array, one struct size)");
+        (*out)[k] = abi::Layout<T>::defaults();
+        std::memcpy(static_cast<void*>(&(*out)[k]), e, size);
+        (*out)[k].struct_size = sizeof(T);
+    }
+    return DRAPE_OK;
+}
+
+// Out-structs that ABI 1 callers were not asked to prepare (get_info, get_params,
+// params_default): a size never shipped (0, garbage) reads as the first revision's.
+template <class T>
+uint32_t lenient_out_size(const T* out) {
+    return shipped_size<T>(out->struct_size) ? out->struct_size : abi::Layout<T>::sizes[0];
+}
+
+// Writes the first `size` bytes of `full` (a shipped size) to out, struct_size = size.
+template <class T>
+void write_out(T full, T* out, uint32_t size) {
+    full.struct_size = size;
+    std::memcpy(static_cast<void*>(out), &full, size);
+}
 
 // Runs body, turning any exception into a status (no exception crosses the C boundary).
 template <class Body>
@@ -170,13 +236,14 @@ drape_status check_cloth(const drape_cloth* c) {
     return DRAPE_OK;
 }
 
-drape_status check_cloth_desc(const drape_cloth_desc* desc) {
-    DRAPE_CHECK_STRUCT(desc, drape_cloth_desc);
+// desc: already through DRAPE_CHECK_STRUCT. need_available: creation needs the backend here.
+drape_status check_cloth_desc(const drape_cloth_desc* desc, bool need_available = true) {
     DRAPE_REQUIRE(desc->backend <= DRAPE_BACKEND_GLES, DRAPE_ERROR_INVALID_ENUM,
                   "backend " + std::to_string(desc->backend) + " is not a drape_backend");
     DRAPE_REQUIRE(std::isfinite(desc->total_mass), DRAPE_ERROR_NOT_FINITE, "total_mass is NaN or infinite");
     DRAPE_REQUIRE(desc->total_mass > 0 && desc->total_mass <= kMaxMass, DRAPE_ERROR_INVALID_ARGUMENT,
                   "total_mass must be in (0, 1e6] kg");
+    if (!need_available) return DRAPE_OK;
     uint32_t available = 0;
     drape_backend_available(desc->backend, &available);
 #ifdef DRAPE_WITH_GLES
@@ -210,8 +277,8 @@ drape_status apply_edit(Cloth* c, Access access, Fn&& fn) {
     return ok();
 }
 
+// layout: already through DRAPE_CHECK_STRUCT.
 drape_status check_layout(const drape_vertex_layout* layout) {
-    DRAPE_CHECK_STRUCT(layout, drape_vertex_layout);
     DRAPE_REQUIRE(layout->stride >= 12 && layout->stride % 4 == 0 && layout->stride <= 1024,
                   DRAPE_ERROR_INVALID_ARGUMENT, "stride must be a multiple of 4 in [12, 1024]");
     DRAPE_REQUIRE(layout->position_offset >= 0 || layout->normal_offset >= 0, DRAPE_ERROR_INVALID_ARGUMENT,
@@ -283,6 +350,42 @@ drape_status check_xyz_array(const float* xyz, uint32_t count, const char* what)
     return DRAPE_OK;
 }
 
+// grid, mesh: already through DRAPE_CHECK_STRUCT.
+drape_status check_grid(const drape_grid_desc* grid) {
+    DRAPE_REQUIRE(grid->columns >= 1 && grid->rows >= 1 && uint64_t(grid->columns) * grid->rows >= 2,
+                  DRAPE_ERROR_INVALID_ARGUMENT, "grid needs columns >= 1, rows >= 1 and at least 2 vertices");
+    DRAPE_REQUIRE(uint64_t(grid->columns) * grid->rows <= kMaxVertices, DRAPE_ERROR_INVALID_ARGUMENT,
+                  "grid has more than 4194304 vertices");
+    DRAPE_REQUIRE(std::isfinite(grid->width) && std::isfinite(grid->height) && finite3(grid->origin) &&
+                      finite3(grid->axis_u) && finite3(grid->axis_v),
+                  DRAPE_ERROR_NOT_FINITE, "grid width, height, origin and axes must be finite");
+    DRAPE_REQUIRE(grid->width > 0 && grid->height > 0 && grid->width <= kMaxCoordinate &&
+                      grid->height <= kMaxCoordinate && bounded3(grid->origin),
+                  DRAPE_ERROR_INVALID_ARGUMENT, "grid width and height must be in (0, 1e6] m, origin within 1e6 m");
+    const float* u = grid->axis_u;
+    const float* v = grid->axis_v;
+    const float cross[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const bool default_axes = (u[0] == 0 && u[1] == 0 && u[2] == 0) || (v[0] == 0 && v[1] == 0 && v[2] == 0);
+    DRAPE_REQUIRE(default_axes || cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2] > 1e-12f *
+                      (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]),
+                  DRAPE_ERROR_INVALID_ARGUMENT, "grid axis_u and axis_v are parallel");
+    return DRAPE_OK;
+}
+
+drape_status check_mesh(const drape_mesh_desc* mesh) {
+    DRAPE_REQUIRE(mesh->positions != nullptr, DRAPE_ERROR_NULL_POINTER, "mesh->positions is NULL");
+    DRAPE_REQUIRE(mesh->indices != nullptr, DRAPE_ERROR_NULL_POINTER, "mesh->indices is NULL");
+    DRAPE_REQUIRE(mesh->vertex_count >= 3 && mesh->vertex_count <= kMaxVertices, DRAPE_ERROR_INVALID_ARGUMENT,
+                  "mesh vertex_count must be in [3, 4194304]");
+    DRAPE_REQUIRE(mesh->index_count >= 3 && mesh->index_count % 3 == 0 && mesh->index_count <= 3 * 2 * kMaxVertices,
+                  DRAPE_ERROR_INVALID_ARGUMENT, "mesh index_count must be a positive multiple of 3 (triangle list)");
+    DRAPE_REQUIRE(std::isfinite(mesh->weld_distance), DRAPE_ERROR_NOT_FINITE, "weld_distance is NaN or infinite");
+    DRAPE_REQUIRE(mesh->weld_distance >= 0 && mesh->weld_distance <= 1, DRAPE_ERROR_INVALID_ARGUMENT,
+                  "weld_distance must be in [0, 1] m");
+    if (drape_status s = check_xyz_array(mesh->positions, mesh->vertex_count, "mesh position")) return s;
+    return DRAPE_OK;
+}
+
 }  // namespace
 
 drape_status drape::set_last_error(drape_status status, const char* message) {
@@ -309,7 +412,7 @@ drape_status drape_backend_available(uint32_t backend, uint32_t* out_available) 
 
 drape_status drape_params_default(drape_params* out_params) {
     DRAPE_REQUIRE(out_params != nullptr, DRAPE_ERROR_NULL_POINTER, "out_params is NULL");
-    *out_params = default_params();
+    write_out(default_params(), out_params, lenient_out_size(out_params));
     return ok();
 }
 
@@ -352,45 +455,22 @@ drape_status drape_world_step(drape_world* world, float dt) {
 drape_status drape_cloth_create_grid(drape_world* world, const drape_cloth_desc* desc, const drape_grid_desc* grid,
                                      drape_cloth** out_cloth) {
     if (drape_status s = check_world(world)) return s;
+    DRAPE_CHECK_STRUCT(desc, drape_cloth_desc);
     if (drape_status s = check_cloth_desc(desc)) return s;
     DRAPE_CHECK_STRUCT(grid, drape_grid_desc);
     DRAPE_REQUIRE(out_cloth != nullptr, DRAPE_ERROR_NULL_POINTER, "out_cloth is NULL");
-    DRAPE_REQUIRE(grid->columns >= 1 && grid->rows >= 1 && uint64_t(grid->columns) * grid->rows >= 2,
-                  DRAPE_ERROR_INVALID_ARGUMENT, "grid needs columns >= 1, rows >= 1 and at least 2 vertices");
-    DRAPE_REQUIRE(uint64_t(grid->columns) * grid->rows <= kMaxVertices, DRAPE_ERROR_INVALID_ARGUMENT,
-                  "grid has more than 4194304 vertices");
-    DRAPE_REQUIRE(std::isfinite(grid->width) && std::isfinite(grid->height) && finite3(grid->origin) &&
-                      finite3(grid->axis_u) && finite3(grid->axis_v),
-                  DRAPE_ERROR_NOT_FINITE, "grid width, height, origin and axes must be finite");
-    DRAPE_REQUIRE(grid->width > 0 && grid->height > 0 && grid->width <= kMaxCoordinate &&
-                      grid->height <= kMaxCoordinate && bounded3(grid->origin),
-                  DRAPE_ERROR_INVALID_ARGUMENT, "grid width and height must be in (0, 1e6] m, origin within 1e6 m");
-    const float* u = grid->axis_u;
-    const float* v = grid->axis_v;
-    const float cross[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    const bool default_axes = (u[0] == 0 && u[1] == 0 && u[2] == 0) || (v[0] == 0 && v[1] == 0 && v[2] == 0);
-    DRAPE_REQUIRE(default_axes || cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2] > 1e-12f *
-                      (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]),
-                  DRAPE_ERROR_INVALID_ARGUMENT, "grid axis_u and axis_v are parallel");
+    if (drape_status s = check_grid(grid)) return s;
     return guarded([&] { return finish_create(world, desc, cook_grid(*grid, desc->total_mass), out_cloth); });
 }
 
 drape_status drape_cloth_create_mesh(drape_world* world, const drape_cloth_desc* desc, const drape_mesh_desc* mesh,
                                      drape_cloth** out_cloth) {
     if (drape_status s = check_world(world)) return s;
+    DRAPE_CHECK_STRUCT(desc, drape_cloth_desc);
     if (drape_status s = check_cloth_desc(desc)) return s;
     DRAPE_CHECK_STRUCT(mesh, drape_mesh_desc);
     DRAPE_REQUIRE(out_cloth != nullptr, DRAPE_ERROR_NULL_POINTER, "out_cloth is NULL");
-    DRAPE_REQUIRE(mesh->positions != nullptr, DRAPE_ERROR_NULL_POINTER, "mesh->positions is NULL");
-    DRAPE_REQUIRE(mesh->indices != nullptr, DRAPE_ERROR_NULL_POINTER, "mesh->indices is NULL");
-    DRAPE_REQUIRE(mesh->vertex_count >= 3 && mesh->vertex_count <= kMaxVertices, DRAPE_ERROR_INVALID_ARGUMENT,
-                  "mesh vertex_count must be in [3, 4194304]");
-    DRAPE_REQUIRE(mesh->index_count >= 3 && mesh->index_count % 3 == 0 && mesh->index_count <= 3 * 2 * kMaxVertices,
-                  DRAPE_ERROR_INVALID_ARGUMENT, "mesh index_count must be a positive multiple of 3 (triangle list)");
-    DRAPE_REQUIRE(std::isfinite(mesh->weld_distance), DRAPE_ERROR_NOT_FINITE, "weld_distance is NaN or infinite");
-    DRAPE_REQUIRE(mesh->weld_distance >= 0 && mesh->weld_distance <= 1, DRAPE_ERROR_INVALID_ARGUMENT,
-                  "weld_distance must be in [0, 1] m");
-    if (drape_status s = check_xyz_array(mesh->positions, mesh->vertex_count, "mesh position")) return s;
+    if (drape_status s = check_mesh(mesh)) return s;
     return guarded([&] {
         Topology topo;
         CookResult r = cook_mesh(*mesh, desc->total_mass, topo);
@@ -423,7 +503,7 @@ drape_status drape_cloth_set_params(drape_cloth* cloth, const drape_params* para
 drape_status drape_cloth_get_params(const drape_cloth* cloth, drape_params* out_params) {
     if (drape_status s = check_cloth(cloth)) return s;
     DRAPE_REQUIRE(out_params != nullptr, DRAPE_ERROR_NULL_POINTER, "out_params is NULL");
-    *out_params = as_cloth(cloth)->params();
+    write_out(as_cloth(cloth)->params(), out_params, lenient_out_size(out_params));
     return ok();
 }
 
@@ -445,8 +525,10 @@ drape_status drape_cloth_set_pins(drape_cloth* cloth, const drape_pin* pins, uin
     if (drape_status s = check_cloth(cloth)) return s;
     DRAPE_REQUIRE(pins != nullptr || count == 0, DRAPE_ERROR_NULL_POINTER, "pins is NULL");
     const uint32_t n = as_cloth(cloth)->topology().vertex_count;
+    std::vector<drape_pin> current;
+    if (drape_status s = guarded([&] { return read_array(pins, count, "pins", &current); })) return s;
+    pins = current.data();
     for (uint32_t k = 0; k < count; ++k) {
-        DRAPE_CHECK_STRUCT(&pins[k], drape_pin);
         DRAPE_REQUIRE(pins[k].vertex < n, DRAPE_ERROR_INDEX_OUT_OF_RANGE,
                       "pin " + std::to_string(k) + " vertex " + std::to_string(pins[k].vertex) + " >= vertex count " +
                           std::to_string(n));
@@ -463,7 +545,7 @@ drape_status drape_cloth_set_pins(drape_cloth* cloth, const drape_pin* pins, uin
             const drape_pin& pin = pins[k];
             all_pinned = c->is_pinned(pin.vertex);
         }
-        std::vector<drape_pin> copy(pins, pins + count);
+        std::vector<drape_pin> copy(std::move(current));
         return apply_edit(as_cloth(cloth), all_pinned ? Access::NoState : Access::ReadsState,
                           [copy](Cloth& c) { c.set_pins(copy.data(), uint32_t(copy.size())); });
     });
@@ -515,6 +597,7 @@ drape_status drape_cloth_step(drape_cloth* cloth, float dt) {
 drape_status drape_cloth_read(const drape_cloth* cloth, const drape_vertex_layout* layout, void* dst,
                               size_t dst_size) {
     if (drape_status s = check_cloth(cloth)) return s;
+    DRAPE_CHECK_STRUCT(layout, drape_vertex_layout);
     if (drape_status s = check_layout(layout)) return s;
     DRAPE_REQUIRE(dst != nullptr, DRAPE_ERROR_NULL_POINTER, "dst is NULL");
     const uint64_t needed = uint64_t(as_cloth(cloth)->topology().vertex_count) * layout->stride;
@@ -544,27 +627,19 @@ drape_status drape_cloth_get_info(const drape_cloth* cloth, drape_cloth_info* ou
     for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) info.spring_count[g] = t.spring_count[g];
     info.triangle_count = uint32_t(t.triangles.size() / 3);
     info.backend = c->backend();
-    *out_info = info;
+    write_out(info, out_info, lenient_out_size(out_info));
     return ok();
 }
 
 drape_status drape_cloth_get_stats(const drape_cloth* cloth, drape_stats* out_stats) {
     if (drape_status s = check_cloth(cloth)) return s;
     DRAPE_REQUIRE(out_stats != nullptr, DRAPE_ERROR_NULL_POINTER, "out_stats is NULL");
-    // issue 5: drape_stats grew `sleeping` at its end; callers built against the shorter struct
-    // (struct_size = offsetof(drape_stats, sleeping)) get that prefix; other sizes are refused.
-    const uint32_t size = out_stats->struct_size;
-    DRAPE_REQUIRE(size == sizeof(drape_stats) || size == offsetof(drape_stats, sleeping), DRAPE_ERROR_STRUCT_SIZE,
-                  "out_stats->struct_size is " + std::to_string(size) + ", this library expects sizeof(drape_stats) = " +
-                      std::to_string(sizeof(drape_stats)) + " (or " + std::to_string(offsetof(drape_stats, sleeping)) +
-                      " without `sleeping`)");
+    const uint32_t size = out_stats->struct_size;  // any shipped revision: that prefix is written
+    DRAPE_REQUIRE(shipped_size<drape_stats>(size), DRAPE_ERROR_STRUCT_SIZE, struct_size_problem<drape_stats>("out_stats", size));
     return guarded([&] {
         drape_stats full{};
         full.struct_size = sizeof full;
-        auto copy_out = [&] {
-            full.struct_size = size;
-            std::memcpy(out_stats, &full, size);
-        };
+        auto copy_out = [&] { write_out(full, out_stats, size); };
 #ifdef DRAPE_WITH_GLES
         if (as_cloth(cloth)->backend() == DRAPE_BACKEND_GLES) {
             Result r = static_cast<gles::GlesCloth*>(const_cast<Cloth*>(as_cloth(cloth)))->stats_out(&full);
@@ -578,10 +653,57 @@ drape_status drape_cloth_get_stats(const drape_cloth* cloth, drape_stats* out_st
     });
 }
 
+drape_status drape_estimate_stability(const drape_cloth_desc* desc, const drape_grid_desc* grid,
+                                      const drape_mesh_desc* mesh, const drape_params* params, float dt,
+                                      drape_stability* out_estimate) {
+    DRAPE_CHECK_STRUCT(desc, drape_cloth_desc);
+    if (drape_status s = check_cloth_desc(desc, /*need_available=*/false)) return s;
+    DRAPE_REQUIRE((grid != nullptr) != (mesh != nullptr), grid ? DRAPE_ERROR_INVALID_ARGUMENT : DRAPE_ERROR_NULL_POINTER,
+                  "give exactly one of grid and mesh (the other NULL)");
+    if (grid) {
+        DRAPE_CHECK_STRUCT(grid, drape_grid_desc);
+        if (drape_status s = check_grid(grid)) return s;
+    } else {
+        DRAPE_CHECK_STRUCT(mesh, drape_mesh_desc);
+        if (drape_status s = check_mesh(mesh)) return s;
+    }
+    DRAPE_CHECK_STRUCT(params, drape_params);
+    drape_status status;
+    std::string problem = validate_params(*params, &status);
+    if (status != DRAPE_OK) return fail(status, problem);
+    DRAPE_REQUIRE(std::isfinite(dt), DRAPE_ERROR_NOT_FINITE, "dt is NaN or infinite");
+    DRAPE_REQUIRE(dt > 0 && dt <= DRAPE_MAX_DT, DRAPE_ERROR_INVALID_ARGUMENT, "dt must be in (0, 1] s");
+    DRAPE_REQUIRE(out_estimate != nullptr, DRAPE_ERROR_NULL_POINTER, "out_estimate is NULL");
+    const uint32_t size = out_estimate->struct_size;
+    DRAPE_REQUIRE(shipped_size<drape_stability>(size), DRAPE_ERROR_STRUCT_SIZE,
+                  struct_size_problem<drape_stability>("out_estimate", size));
+    return guarded([&] {
+        Topology topo;
+        if (grid) {
+            topo = cook_grid(*grid, desc->total_mass);
+        } else {
+            CookResult r = cook_mesh(*mesh, desc->total_mass, topo);
+            if (r.status != DRAPE_OK) return fail(r.status, r.message);
+        }
+        const StabilityEstimate e = estimate_stability(topo, *params, dt);
+        drape_stability out = abi::Layout<drape_stability>::defaults();
+        out.substeps = e.substeps;
+        out.stable_substeps = e.stable_substeps;
+        out.max_stable_substep = e.max_stable_substep;
+        out.stable = e.substeps >= e.stable_substeps ? 1 : 0;
+        write_out(out, out_estimate, size);
+        return ok();
+    });
+}
+
 drape_status drape_cloth_set_output_buffer(drape_cloth* cloth, uint32_t gl_buffer, const drape_vertex_layout* layout) {
     if (drape_status s = check_cloth(cloth)) return s;
-    if (gl_buffer != 0)
+    drape_vertex_layout layout_current_{};
+    if (gl_buffer != 0) {
+        if (drape_status s = read_struct(layout, "layout", &layout_current_)) return s;
+        layout = &layout_current_;
         if (drape_status s = check_layout(layout)) return s;
+    }
     DRAPE_REQUIRE(as_cloth(cloth)->backend() == DRAPE_BACKEND_GLES, DRAPE_ERROR_INVALID_ARGUMENT,
                   "an output GL buffer needs a GLES cloth; use drape_cloth_read for CPU cloths");
 #ifdef DRAPE_WITH_GLES
@@ -610,7 +732,7 @@ drape_status drape_cloth_readback(drape_cloth* cloth) {
 
 }  // extern "C"
 
-// ---- issue 5: colliders, sleeping, touch drag, grabs, owner transform ------------------------
+// ---- colliders, sleeping, touch drag, grabs, owner transform ---------------------------------
 // Validation here; the state lives in core/interaction.{h,cpp}.
 namespace {
 
@@ -642,9 +764,6 @@ drape_status check_cpu_cloth(const drape_cloth* cloth, const char* what) {
 
 drape_status check_collider(const drape_collider& c, uint32_t k) {
     const std::string what = "collider " + std::to_string(k);
-    DRAPE_REQUIRE(c.struct_size == sizeof(drape_collider), DRAPE_ERROR_STRUCT_SIZE,
-                  what + " struct_size is " + std::to_string(c.struct_size) +
-                      ", this library expects sizeof(drape_collider) = " + std::to_string(sizeof(drape_collider)));
     DRAPE_REQUIRE(c.shape <= DRAPE_COLLIDER_PLANE, DRAPE_ERROR_INVALID_ENUM,
                   what + " shape " + std::to_string(c.shape) + " is not a drape_collider_shape");
     DRAPE_REQUIRE(finite3(c.position), DRAPE_ERROR_NOT_FINITE, what + " position is NaN or infinite");
@@ -668,8 +787,8 @@ drape_status check_collider(const drape_collider& c, uint32_t k) {
     return DRAPE_OK;
 }
 
+// v: already through DRAPE_CHECK_STRUCT.
 drape_status check_view(const drape_view* v) {
-    DRAPE_CHECK_STRUCT(v, drape_view);
     DRAPE_REQUIRE(finite_n(v->world, 16) && finite_n(v->view, 16) && finite_n(v->projection, 16) &&
                       finite_n(v->viewport, 2),
                   DRAPE_ERROR_NOT_FINITE, "view matrices or viewport contain NaN or infinity");
@@ -699,6 +818,9 @@ drape_status drape_cloth_set_colliders(drape_cloth* cloth, const drape_collider*
     DRAPE_REQUIRE(colliders != nullptr || count == 0, DRAPE_ERROR_NULL_POINTER, "colliders is NULL");
     DRAPE_REQUIRE(count <= DRAPE_MAX_COLLIDERS, DRAPE_ERROR_INVALID_ARGUMENT,
                   std::to_string(count) + " colliders, at most " + std::to_string(DRAPE_MAX_COLLIDERS) + " per cloth");
+    std::vector<drape_collider> current;
+    if (drape_status s = guarded([&] { return read_array(colliders, count, "colliders", &current); })) return s;
+    colliders = current.data();
     for (uint32_t k = 0; k < count; ++k) {
         if (drape_status s = check_collider(colliders[k], k)) return s;
         for (uint32_t j = 0; j < k; ++j)
@@ -708,7 +830,7 @@ drape_status drape_cloth_set_colliders(drape_cloth* cloth, const drape_collider*
     }
     return guarded([&] {
         // Copied: a GLES cloth on Unity's main thread applies it on the render thread.
-        std::vector<drape_collider> copy(colliders, colliders + count);
+        std::vector<drape_collider> copy(std::move(current));
         return apply_edit(as_cloth(cloth), Access::NoState,
                           [copy](Cloth& c) { c.set_colliders(copy.data(), uint32_t(copy.size())); });
     });
@@ -717,12 +839,8 @@ drape_status drape_cloth_set_colliders(drape_cloth* cloth, const drape_collider*
 drape_status drape_cloth_set_sleep(drape_cloth* cloth, const drape_sleep_desc* desc) {
     if (drape_status s = check_cpu_cloth(cloth, "sleeping")) return s;
     DRAPE_CHECK_STRUCT(desc, drape_sleep_desc);
-    DRAPE_REQUIRE(std::isfinite(desc->threshold) && std::isfinite(desc->time), DRAPE_ERROR_NOT_FINITE,
-                  "sleep threshold or time is NaN or infinite");
-    DRAPE_REQUIRE(desc->threshold >= 0 && desc->threshold <= 100, DRAPE_ERROR_INVALID_ARGUMENT,
-                  "sleep threshold must be in [0, 100] m/s");
-    DRAPE_REQUIRE(desc->time >= 0 && desc->time <= 100, DRAPE_ERROR_INVALID_ARGUMENT,
-                  "sleep time must be in [0, 100] s");
+    std::string problem;
+    if (drape_status s = abi::Layout<drape_sleep_desc>::check(*desc, &problem)) return fail(s, "sleep " + problem);
     return guarded([&] {
         as_cloth(cloth)->set_sleep(desc->threshold, desc->time);
         return ok();
@@ -737,39 +855,29 @@ drape_status drape_cloth_wake(drape_cloth* cloth) {
 
 drape_status drape_touch_default(drape_touch* out_touch) {
     DRAPE_REQUIRE(out_touch != nullptr, DRAPE_ERROR_NULL_POINTER, "out_touch is NULL");
-    drape_touch t{};
-    t.struct_size = sizeof t;
-    t.amplitude = kTouchAmplitude;
-    t.sigma = kTouchSigma;
-    *out_touch = t;
+    static_assert(kTouchAmplitude == 200.0f && kTouchSigma == 300.0f, "tools/abi/abi.py: drape_touch defaults");
+    *out_touch = abi::Layout<drape_touch>::defaults();
     return ok();
 }
 
 drape_status drape_cloth_drag(drape_cloth* cloth, const drape_view* view, const drape_touch* touches, uint32_t count) {
     if (drape_status s = check_cloth(cloth)) return s;  // GLES too (reads the positions back)
+    DRAPE_CHECK_STRUCT(view, drape_view);
     if (drape_status s = check_view(view)) return s;
     DRAPE_REQUIRE(touches != nullptr || count == 0, DRAPE_ERROR_NULL_POINTER, "touches is NULL");
     DRAPE_REQUIRE(count <= kMaxTouches, DRAPE_ERROR_INVALID_ARGUMENT,
                   std::to_string(count) + " touches, at most " + std::to_string(kMaxTouches));
+    std::vector<drape_touch> current;
+    if (drape_status s = guarded([&] { return read_array(touches, count, "touches", &current); })) return s;
     for (uint32_t k = 0; k < count; ++k) {
-        const drape_touch& t = touches[k];
-        const std::string what = "touch " + std::to_string(k);
-        DRAPE_REQUIRE(t.struct_size == sizeof(drape_touch), DRAPE_ERROR_STRUCT_SIZE,
-                      what + " struct_size is " + std::to_string(t.struct_size) +
-                          ", this library expects sizeof(drape_touch) = " + std::to_string(sizeof(drape_touch)));
-        if (drape_status s = check_screen_point(t.position, (what + " position").c_str())) return s;
-        if (drape_status s = check_screen_point(t.motion, (what + " motion").c_str())) return s;
-        DRAPE_REQUIRE(std::isfinite(t.amplitude) && std::isfinite(t.sigma), DRAPE_ERROR_NOT_FINITE,
-                      what + " amplitude or sigma is NaN or infinite");
-        DRAPE_REQUIRE(t.amplitude > 0 && t.amplitude <= 1e6f, DRAPE_ERROR_INVALID_ARGUMENT,
-                      what + " amplitude must be in (0, 1e6]");
-        DRAPE_REQUIRE(t.sigma > 0 && t.sigma <= 1e12f, DRAPE_ERROR_INVALID_ARGUMENT,
-                      what + " sigma must be in (0, 1e12] px^2");
+        std::string problem;
+        if (drape_status s = abi::Layout<drape_touch>::check(current[k], &problem))
+            return fail(s, "touch " + std::to_string(k) + " " + problem);
     }
     return guarded([&] {
         // Drag reads the current positions (a GLES cloth reads them back first); copied for the
         // render thread.
-        std::vector<drape_touch> copy(touches, touches + count);
+        std::vector<drape_touch> copy(std::move(current));
         const drape_view v = *view;
         return apply_edit(as_cloth(cloth), Access::ReadsState,
                           [copy, v](Cloth& c) { c.drag(v, copy.data(), uint32_t(copy.size())); });
@@ -779,6 +887,7 @@ drape_status drape_cloth_drag(drape_cloth* cloth, const drape_view* view, const 
 drape_status drape_cloth_grab(drape_cloth* cloth, const drape_view* view, uint32_t touch_id, const float position[2],
                               float pick_radius, uint32_t* out_vertex) {
     if (drape_status s = check_cpu_cloth(cloth, "grab")) return s;
+    DRAPE_CHECK_STRUCT(view, drape_view);
     if (drape_status s = check_view(view)) return s;
     if (drape_status s = check_screen_point(position, "position")) return s;
     DRAPE_REQUIRE(out_vertex != nullptr, DRAPE_ERROR_NULL_POINTER, "out_vertex is NULL");
@@ -798,6 +907,7 @@ drape_status drape_cloth_grab(drape_cloth* cloth, const drape_view* view, uint32
 drape_status drape_cloth_grab_move(drape_cloth* cloth, const drape_view* view, uint32_t touch_id,
                                    const float position[2]) {
     if (drape_status s = check_cpu_cloth(cloth, "grab")) return s;
+    DRAPE_CHECK_STRUCT(view, drape_view);
     if (drape_status s = check_view(view)) return s;
     if (drape_status s = check_screen_point(position, "position")) return s;
     DRAPE_REQUIRE(as_cloth(cloth)->grabbing(touch_id), DRAPE_ERROR_INVALID_ARGUMENT,
@@ -819,30 +929,16 @@ drape_status drape_cloth_grab_release(drape_cloth* cloth, uint32_t touch_id) {
 
 drape_status drape_owner_default(drape_owner* out_owner) {
     DRAPE_REQUIRE(out_owner != nullptr, DRAPE_ERROR_NULL_POINTER, "out_owner is NULL");
-    drape_owner o{};
-    o.struct_size = sizeof o;
-    o.rotation[3] = 1;
-    o.linear_inertia = 1;
-    o.angular_inertia = 1;
-    o.teleport_distance = 1;
-    *out_owner = o;
+    *out_owner = abi::Layout<drape_owner>::defaults();
     return ok();
 }
 
 drape_status drape_cloth_set_owner(drape_cloth* cloth, const drape_owner* owner) {
     if (drape_status s = check_cpu_cloth(cloth, "owner transform")) return s;
     DRAPE_CHECK_STRUCT(owner, drape_owner);
-    DRAPE_REQUIRE(finite3(owner->position), DRAPE_ERROR_NOT_FINITE, "owner position is NaN or infinite");
-    DRAPE_REQUIRE(bounded3(owner->position), DRAPE_ERROR_INVALID_ARGUMENT, "owner position is beyond 1e6 m");
+    std::string problem;
+    if (drape_status s = abi::Layout<drape_owner>::check(*owner, &problem)) return fail(s, "owner " + problem);
     if (drape_status s = check_unit_quat(owner->rotation, "owner")) return s;
-    DRAPE_REQUIRE(std::isfinite(owner->linear_inertia) && std::isfinite(owner->angular_inertia) &&
-                      std::isfinite(owner->teleport_distance),
-                  DRAPE_ERROR_NOT_FINITE, "owner inertia or teleport_distance is NaN or infinite");
-    DRAPE_REQUIRE(owner->linear_inertia >= 0 && owner->linear_inertia <= 1 && owner->angular_inertia >= 0 &&
-                      owner->angular_inertia <= 1,
-                  DRAPE_ERROR_INVALID_ARGUMENT, "owner inertia scales must be in [0, 1]");
-    DRAPE_REQUIRE(owner->teleport_distance > 0 && owner->teleport_distance <= 1e6f, DRAPE_ERROR_INVALID_ARGUMENT,
-                  "owner teleport_distance must be in (0, 1e6] m");
     return guarded([&] {
         as_cloth(cloth)->set_owner(*owner);
         return ok();
@@ -851,7 +947,7 @@ drape_status drape_cloth_set_owner(drape_cloth* cloth, const drape_owner* owner)
 
 }  // extern "C"
 
-// ---- issue 5: self-collision ------------------------------------------------------------------
+// ---- self-collision ----------------------------------------------------------------------------
 // Validation here; the state lives in core/self_collision.{h,cpp}.
 extern "C" {
 
@@ -885,11 +981,16 @@ drape_status drape_cloth_set_self_collision(drape_cloth* cloth, const drape_self
 
 drape_status drape_cloth_get_self_collision(const drape_cloth* cloth, drape_self_collision_desc* out_desc) {
     if (drape_status s = check_cloth(cloth)) return s;
-    DRAPE_CHECK_STRUCT(out_desc, drape_self_collision_desc);
+    DRAPE_REQUIRE(out_desc != nullptr, DRAPE_ERROR_NULL_POINTER, "out_desc is NULL");
+    const uint32_t size = out_desc->struct_size;
+    DRAPE_REQUIRE(shipped_size<drape_self_collision_desc>(size), DRAPE_ERROR_STRUCT_SIZE,
+                  struct_size_problem<drape_self_collision_desc>("out_desc", size));
     const SelfCollision& sc = as_cloth(cloth)->self_collision();
-    out_desc->enabled = sc.enabled ? 1 : 0;
-    out_desc->thickness = sc.thickness;
-    out_desc->friction = sc.friction;
+    drape_self_collision_desc d = abi::Layout<drape_self_collision_desc>::defaults();
+    d.enabled = sc.enabled ? 1 : 0;
+    d.thickness = sc.thickness;
+    d.friction = sc.friction;
+    write_out(d, out_desc, size);
     return ok();
 }
 

@@ -58,9 +58,8 @@ void Cloth::refresh_derived() {
         buffers_[cur_][i].w = buffers_[disp_][i].w = w;
         if (w == 0.0f) kinematic_.push_back(i);
     }
-    // Active springs per particle, and the explicit stability bound (accuracy.md, "cruder"
-    // form, valid in any pose): w^2 <= 2 w_i sum_j k_ij; with the dashpots' c = 2 w_i sum kd,
-    // Verlet needs h^2 w^2 + 2 h c <= 4 (times a safety factor).
+    // Active springs per particle, and the explicit stability bound (mass_spring_max_substep,
+    // core/params.h; drape_estimate_stability runs the same on a cooked topology).
     float h_max = INFINITY;
     for (uint32_t i = 0; i < n; ++i) {
         uint32_t active = 0;
@@ -73,13 +72,7 @@ void Cloth::refresh_derived() {
             }
         }
         active_count_[i] = active;
-        const float w = buffers_[cur_][i].w;
-        if (w == 0 || active == 0) continue;
-        const float a = 2.0f * w * ksum;
-        const float b = 2.0f * w * params_.damping * float(active);
-        const float s = kStabilitySafety;
-        const float h = a > 0 ? (-b + std::sqrt(b * b + 4.0f * s * s * a)) / a : 2.0f * s * s / std::max(b, 1e-30f);
-        h_max = std::min(h_max, h);
+        h_max = std::min(h_max, mass_spring_max_substep(buffers_[cur_][i].w, ksum, params_.damping, active));
     }
     ms_h_max_ = h_max;
     if (kinematic_ != tethered_kinematic_) rebuild_tethers();
@@ -187,12 +180,7 @@ void Cloth::set_velocities(const float* xyz) {
     fresh_ = true;
 }
 
-uint32_t Cloth::substeps_for(float dt) const {
-    if (params_.substeps > 0) return params_.substeps;
-    if (params_.model != DRAPE_MODEL_MASS_SPRING) return kAutoSubstepsPositionBased;
-    float s = std::ceil(dt / ms_h_max_);
-    return s < 1 ? 1u : s > float(kMaxSubsteps) ? kMaxSubsteps : uint32_t(s);
-}
+uint32_t Cloth::substeps_for(float dt) const { return drape::substeps_for(params_, ms_h_max_, dt); }
 
 template <class Fn>
 void Cloth::for_particles(Fn&& fn) {

@@ -1,56 +1,67 @@
 #include "core/params.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include "core/abi_tables.h"
+#include "core/topology.h"
+
 namespace drape {
-namespace {
 
-bool finite3(const float v[3]) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
-float norm3(const float v[3]) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-
-}  // namespace
-
-drape_params default_params() {
-    drape_params p{};
-    p.struct_size = sizeof(drape_params);
-    p.model = DRAPE_MODEL_XPBD;
-    p.stiffness[DRAPE_GROUP_STRUCTURAL] = 2000.0f;
-    p.stiffness[DRAPE_GROUP_SHEAR] = 1000.0f;
-    p.stiffness[DRAPE_GROUP_BEND] = 200.0f;
-    p.damping = 0.05f;
-    p.gravity[1] = -9.81f;
-    p.air_drag = 0.1f;
-    p.substeps = 0;
-    p.iterations = 1;
-    p.max_stretch = 0.1f;
-    return p;
-}
+drape_params default_params() { return abi::Layout<drape_params>::defaults(); }
 
 std::string validate_params(const drape_params& p, drape_status* status) {
-    *status = DRAPE_ERROR_INVALID_ENUM;
-    if (p.model > DRAPE_MODEL_XPBD) return "model " + std::to_string(p.model) + " is not a drape_model";
-    *status = DRAPE_ERROR_NOT_FINITE;
-    for (float k : p.stiffness)
-        if (!std::isfinite(k)) return "stiffness is NaN or infinite";
-    if (!std::isfinite(p.damping) || !std::isfinite(p.air_drag) || !finite3(p.gravity) || !finite3(p.wind) ||
-        !std::isfinite(p.max_stretch))
-        return "damping, air_drag, gravity, wind and max_stretch must be finite";
+    std::string problem;
+    *status = abi::Layout<drape_params>::check(p, &problem);  // tools/abi/abi.py: enums, finite, ranges
+    if (*status != DRAPE_OK) return problem;
     *status = DRAPE_ERROR_INVALID_ARGUMENT;
-    for (float k : p.stiffness) {
-        if (k < 0) return "stiffness must be >= 0";
-        if (p.model == DRAPE_MODEL_PBD && k > 1) return "PBD stiffness is a fraction in [0, 1]";
-        if (k > 1e9f) return "stiffness above 1e9 N/m";
-    }
-    if (p.damping < 0 || p.damping > 1e6f) return "damping must be in [0, 1e6] N*s/m";
-    if (p.air_drag < 0 || p.air_drag > 1e3f) return "air_drag must be in [0, 1000] 1/s";
-    if (norm3(p.gravity) > 1e4f) return "gravity above 1e4 m/s^2";
-    if (norm3(p.wind) > 1e4f) return "wind above 1e4 m/s";
-    if (p.max_stretch < 0 || p.max_stretch > 100) return "max_stretch must be in [0, 100] (0 = no tethers)";
-    if (p.substeps > kMaxSubsteps) return "substeps above " + std::to_string(kMaxSubsteps);
-    if (p.iterations < 1 || p.iterations > kMaxIterations)
-        return "iterations must be in [1, " + std::to_string(kMaxIterations) + "]";
+    if (p.model == DRAPE_MODEL_PBD)
+        for (float k : p.stiffness)
+            if (k > 1) return "PBD stiffness is a fraction in [0, 1]";
     *status = DRAPE_OK;
     return {};
+}
+
+float mass_spring_max_substep(float inverse_mass, float stiffness_sum, float damping, uint32_t active_springs) {
+    const float w = inverse_mass;
+    if (w == 0 || active_springs == 0) return INFINITY;
+    const float a = 2.0f * w * stiffness_sum;
+    const float b = 2.0f * w * damping * float(active_springs);
+    const float s = kStabilitySafety;
+    return a > 0 ? (-b + std::sqrt(b * b + 4.0f * s * s * a)) / a : 2.0f * s * s / std::max(b, 1e-30f);
+}
+
+uint32_t substeps_for(const drape_params& p, float h_max, float dt) {
+    if (p.substeps > 0) return p.substeps;
+    if (p.model != DRAPE_MODEL_MASS_SPRING) return kAutoSubstepsPositionBased;
+    const float s = std::ceil(dt / h_max);
+    return s < 1 ? 1u : s > float(kMaxSubsteps) ? kMaxSubsteps : uint32_t(s);
+}
+
+StabilityEstimate estimate_stability(const Topology& topo, const drape_params& p, float dt) {
+    float h_max = INFINITY;
+    if (p.model == DRAPE_MODEL_MASS_SPRING) {
+        const NeighbourTable& nb = topo.nbr;
+        for (uint32_t i = 0; i < topo.particle_count; ++i) {
+            uint32_t active = 0;
+            float ksum = 0;
+            for (uint32_t s = 0; s < nb.count[i]; ++s) {
+                const uint8_t g = nb.group[size_t(i) * nb.slots + s];
+                if (p.stiffness[g] > 0) {
+                    ++active;
+                    ksum += p.stiffness[g];
+                }
+            }
+            h_max = std::min(h_max, mass_spring_max_substep(1.0f / topo.mass[i], ksum, p.damping, active));
+        }
+    }
+    StabilityEstimate e{};
+    e.substeps = substeps_for(p, h_max, dt);
+    const bool bounded = p.model == DRAPE_MODEL_MASS_SPRING && std::isfinite(h_max);
+    const double needed = bounded ? std::ceil(double(dt) / double(h_max)) : 1.0;
+    e.stable_substeps = needed >= 4294967295.0 ? UINT32_MAX : std::max(1u, uint32_t(needed));
+    e.max_stable_substep = bounded ? h_max : 0.0f;
+    return e;
 }
 
 }  // namespace drape

@@ -7,7 +7,7 @@
 
 namespace drape {
 
-/// Defaults documented in drape.h.
+/// Defaults documented in drape.h (from tools/abi/abi.py).
 drape_params default_params();
 
 /// Empty string when valid; otherwise what is wrong (status in *status).
@@ -17,13 +17,33 @@ std::string validate_params(const drape_params& p, drape_status* status);
 /// at equal cost substeps x iterations, 16 x 1 beat 4 x 4 on every scene of tests/bench:
 /// E2 0.070 vs 0.101 on the two-corner cloth, 0.039 vs 0.147 on the R4 chain).
 constexpr uint32_t kAutoSubstepsPositionBased = 16;
-/// Upper bound on substeps per step, automatic or given.
-constexpr uint32_t kMaxSubsteps = 1000;
-constexpr uint32_t kMaxIterations = 1000;
+/// Upper bound on substeps per step, automatic or given (drape.h).
+constexpr uint32_t kMaxSubsteps = DRAPE_MAX_SUBSTEPS;
+constexpr uint32_t kMaxIterations = DRAPE_MAX_ITERATIONS;
 /// Fraction of the explicit stability limit used when MASS_SPRING picks substeps itself.
 constexpr float kStabilitySafety = 0.9f;
 /// Jacobi coupling weight theta (kernels.h jacobi_scale); convergent for theta > 1/2.
 constexpr float kJacobiCoupling = 0.6f;
+/// MASS_SPRING's explicit stability bound for one particle (accuracy.md, "cruder" form, valid in
+/// any pose): w^2 <= 2 w_i sum_j k_ij; with the dashpots' c = 2 w_i sum kd, Verlet needs
+/// h^2 w^2 + 2 h c <= 4, times kStabilitySafety^2. The largest such substep h, s (INFINITY when
+/// nothing bounds it: no active spring or no inverse mass).
+float mass_spring_max_substep(float inverse_mass, float stiffness_sum, float damping, uint32_t active_springs);
+
+/// Substeps a step of dt uses: params.substeps if set; else MASS_SPRING: ceil(dt / h_max)
+/// (h_max from mass_spring_max_substep, the tightest particle), PBD/XPBD:
+/// kAutoSubstepsPositionBased; always in [1, kMaxSubsteps].
+uint32_t substeps_for(const drape_params& p, float h_max, float dt);
+
+struct Topology;
+struct StabilityEstimate {
+    uint32_t substeps;          ///< what a step of dt uses
+    uint32_t stable_substeps;   ///< fewest within the explicit bound (MASS_SPRING), 1 otherwise
+    float max_stable_substep;   ///< s; 0 = no explicit bound
+};
+/// For a cloth with this topology (cooked masses, no pins) and parameters.
+StabilityEstimate estimate_stability(const Topology& topo, const drape_params& p, float dt);
+
 /// Strain beyond which a step counts as diverged ("runaway strain", accuracy.md).
 constexpr float kRunawayStrain = 10.0f;
 

@@ -62,6 +62,7 @@ namespace Drape.Tests
             new object[] { "drape_touch", typeof(TouchPoint) },
             new object[] { "drape_owner", typeof(Owner) },
             new object[] { "drape_self_collision_desc", typeof(SelfCollisionDesc) },
+            new object[] { "drape_stability", typeof(StabilityEstimate) },
         };
 
         /// <summary>C# fields whose C name is not Snake(name): a member cannot share its struct's name.</summary>
@@ -133,6 +134,7 @@ namespace Drape.Tests
             Assert.That((long)SizeOf.TouchPoint, Is.EqualTo(C["drape_touch"]));
             Assert.That((long)SizeOf.Owner, Is.EqualTo(C["drape_owner"]));
             Assert.That((long)SizeOf.SelfCollisionDesc, Is.EqualTo(C["drape_self_collision_desc"]));
+            Assert.That((long)SizeOf.StabilityEstimate, Is.EqualTo(C["drape_stability"]));
             Assert.That((long)NativeCloth.MaxColliders, Is.EqualTo(C["DRAPE_MAX_COLLIDERS"]));
         }
 

@@ -28,6 +28,17 @@ namespace Drape.Core
         [DllImport(Library, CallingConvention = Cdecl)]
         internal static extern Status drape_params_default(out Params parameters);
 
+        // Exactly one of grid and mesh: the overloads pass the other as IntPtr.Zero.
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_estimate_stability(ref ClothDesc desc, ref GridDesc grid, IntPtr mesh,
+                                                               ref Params parameters, float dt,
+                                                               ref StabilityEstimate estimate);
+
+        [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_estimate_stability(ref ClothDesc desc, IntPtr grid, ref MeshDesc mesh,
+                                                               ref Params parameters, float dt,
+                                                               ref StabilityEstimate estimate);
+
         [DllImport(Library, CallingConvention = Cdecl)]
         internal static extern Status drape_world_create(ref WorldDesc desc, out IntPtr world);
 

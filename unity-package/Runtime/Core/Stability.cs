@@ -2,36 +2,55 @@ using System;
 
 namespace Drape.Core
 {
-    /// <summary>Stability estimates used by the editor to warn before a cloth explodes.</summary>
+    /// <summary>Stability estimates used by the editor to warn before a cloth explodes. They come from
+    /// the native library (drape_estimate_stability): the same cooking (area-weighted masses, springs per
+    /// particle) and the same explicit bound a cloth uses to choose its substeps, so the editor and the
+    /// simulation cannot disagree.</summary>
     public static class Stability
     {
-        /// <summary>Springs per interior vertex and group in the 12-neighbour stencil (paper: 4
-        /// structural, 4 shear, 4 bend/flex).</summary>
-        public const int SpringsPerGroup = 4;
-
-        /// <summary>Margin kept below the explicit limit h*omega_max &lt; 2.</summary>
-        public const float Safety = 0.9f;
-
-        /// <summary>Upper bound of the highest angular frequency (rad/s) of a mass-spring grid whose
-        /// interior vertices carry <paramref name="particleMass"/> kg. Gershgorin on M^-1 K: for
-        /// equal masses every eigenvalue is at most 2 * sum_j k_ij / m, with 4 springs per group.</summary>
-        public static double MassSpringOmegaMax(GroupValues stiffness, float particleMass)
+        /// <summary>Estimate for a grid cloth (as <see cref="NativeCloth.CreateGrid"/> would create it)
+        /// stepped by <paramref name="dt"/> seconds with <paramref name="parameters"/>. StructSize fields
+        /// are set here. Bad input throws <see cref="DrapeException"/> like creation does.</summary>
+        public static StabilityEstimate ForGrid(GridDesc grid, float totalMass, Params parameters, float dt)
         {
-            if (!(particleMass > 0)) throw new ArgumentOutOfRangeException(nameof(particleMass), "must be > 0");
-            double sumK = SpringsPerGroup * ((double)Math.Max(0f, stiffness.Structural) +
-                                             Math.Max(0f, stiffness.Shear) + Math.Max(0f, stiffness.Bend));
-            return Math.Sqrt(2.0 * sumK / particleMass);
+            var desc = new ClothDesc { StructSize = SizeOf.ClothDesc, Backend = Backend.Cpu, TotalMass = totalMass };
+            grid.StructSize = SizeOf.GridDesc;
+            parameters.StructSize = SizeOf.Params;
+            var estimate = new StabilityEstimate { StructSize = SizeOf.StabilityEstimate };
+            NativeMethods.Check(NativeMethods.drape_estimate_stability(ref desc, ref grid, IntPtr.Zero, ref parameters, dt,
+                                                                       ref estimate),
+                                "drape_estimate_stability");
+            return estimate;
         }
 
-        /// <summary>Smallest substep count n such that (dt/n)*omega_max &lt;= 2*Safety (Verlet's
-        /// stability bound, h*omega &lt; 2). At least 1.</summary>
-        public static int MassSpringSubstepsNeeded(GroupValues stiffness, float particleMass, float dt)
+        /// <summary>Estimate for a triangle-mesh cloth (as <see cref="NativeCloth.CreateMesh"/> would
+        /// create it: xyz triples, triangle list, weld distance).</summary>
+        public static unsafe StabilityEstimate ForMesh(ReadOnlySpan<float> positions, ReadOnlySpan<int> indices,
+                                                       float weldDistance, float totalMass, Params parameters, float dt)
         {
-            if (!(dt > 0)) throw new ArgumentOutOfRangeException(nameof(dt), "must be > 0");
-            double omega = MassSpringOmegaMax(stiffness, particleMass);
-            double n = Math.Ceiling(dt * omega / (2.0 * Safety));
-            if (n > int.MaxValue) return int.MaxValue;
-            return Math.Max(1, (int)n);
+            if (positions.Length % 3 != 0)
+                throw new ArgumentException("positions holds xyz triples; length " + positions.Length +
+                                            " is not a multiple of 3", nameof(positions));
+            var desc = new ClothDesc { StructSize = SizeOf.ClothDesc, Backend = Backend.Cpu, TotalMass = totalMass };
+            parameters.StructSize = SizeOf.Params;
+            var estimate = new StabilityEstimate { StructSize = SizeOf.StabilityEstimate };
+            fixed (float* p = positions)
+            fixed (int* i = indices)
+            {
+                var mesh = new MeshDesc
+                {
+                    StructSize = SizeOf.MeshDesc,
+                    VertexCount = (uint)(positions.Length / 3),
+                    Positions = (IntPtr)p,
+                    IndexCount = (uint)indices.Length,
+                    Indices = (IntPtr)i,
+                    WeldDistance = weldDistance,
+                };
+                NativeMethods.Check(NativeMethods.drape_estimate_stability(ref desc, IntPtr.Zero, ref mesh, ref parameters,
+                                                                           dt, ref estimate),
+                                    "drape_estimate_stability");
+            }
+            return estimate;
         }
     }
 }

@@ -93,16 +93,68 @@ namespace Drape.Tests
         }
 
         [Test]
-        public void MassSpringSubstepEstimateMatchesHandComputation()
+        public void StabilityEstimateMatchesHandComputationAndTheStep()
         {
-            // k = 1000/500/100 N/m, m = 0.001 kg: sum k = 4*(1600) = 6400 N/m,
-            // omega_max = sqrt(2*6400/0.001) = sqrt(1.28e7) = 3577.7 rad/s.
-            // dt = 1/60 s: n >= dt*omega/(2*0.9) = 59.63/1.8 = 33.13 -> 34 substeps.
-            var k = new GroupValues(1000f, 500f, 100f);
-            Assert.That(Stability.MassSpringOmegaMax(k, 0.001f), Is.EqualTo(3577.7).Within(0.1));
-            Assert.That(Stability.MassSpringSubstepsNeeded(k, 0.001f, 1f / 60f), Is.EqualTo(34));
-            // Soft and heavy: one substep is enough.
-            Assert.That(Stability.MassSpringSubstepsNeeded(new GroupValues(1f, 0f, 0f), 1f, 1f / 60f), Is.EqualTo(1));
+            // A chain: 1 column x 11 rows, 1 m long, 0.011 kg -> 11 particles of 0.001 kg (a chain's
+            // mass is uniform). Bend springs off, so an inner particle has 2 structural springs of
+            // k = 1000 N/m: omega_max^2 <= 2 * sum k / m = 2 * 2000 / 0.001 = 4e6, omega_max = 2000 rad/s.
+            // No damping: h <= 2 * 0.9 / omega_max = 9e-4 s; dt = 1/60 s -> ceil(16.667 / 0.9) = 19 substeps.
+            var grid = new GridDesc { Columns = 1, Rows = 11, Width = 1f, Height = 1f };
+            Params p = NativeWorld.DefaultParams();
+            p.Model = Model.MassSpring;
+            p.Stiffness = new GroupValues(1000f, 0f, 0f);
+            p.Damping = 0f;
+            StabilityEstimate e = Stability.ForGrid(grid, 0.011f, p, 1f / 60f);
+            Assert.That(e.StructSize, Is.EqualTo(SizeOf.StabilityEstimate));
+            Assert.That(e.MaxStableSubstep, Is.EqualTo(9e-4f).Within(1e-8f));
+            Assert.That(e.StableSubsteps, Is.EqualTo(19u));
+            Assert.That(e.Substeps, Is.EqualTo(19u));  // automatic: the bound
+            Assert.That(e.Stable, Is.EqualTo(1u));
+
+            // The estimate is what the library does: a cloth built the same way steps with 19.
+            using (var world = new NativeWorld(1))
+            using (NativeCloth cloth = NativeCloth.CreateGrid(world, new ClothDesc { Backend = Backend.Cpu, TotalMass = 0.011f }, grid))
+            {
+                cloth.SetParams(p);
+                cloth.Step(1f / 60f);
+                Assert.That(cloth.GetStats().Substeps, Is.EqualTo(e.Substeps));
+            }
+
+            // Four times stiffer: omega doubles, so about twice the substeps; 5 given is flagged unstable.
+            p.Stiffness = new GroupValues(4000f, 0f, 0f);
+            p.Substeps = 5;
+            e = Stability.ForGrid(grid, 0.011f, p, 1f / 60f);
+            Assert.That(e.StableSubsteps, Is.EqualTo(38u));  // ceil(16.667 / 0.45)
+            Assert.That(e.Substeps, Is.EqualTo(5u));
+            Assert.That(e.Stable, Is.EqualTo(0u));
+
+            // Position-based models have no explicit bound; automatic substeps are 16 small steps.
+            p.Model = Model.Xpbd;
+            p.Substeps = 0;
+            e = Stability.ForGrid(grid, 0.011f, p, 1f / 60f);
+            Assert.That(e.Substeps, Is.EqualTo(16u));
+            Assert.That(e.StableSubsteps, Is.EqualTo(1u));
+            Assert.That(e.MaxStableSubstep, Is.EqualTo(0f));
+
+            // Bad input is refused like creation refuses it.
+            var ex = Assert.Throws<DrapeException>(() => Stability.ForGrid(grid, 0.011f, p, 0f));
+            Assert.That(ex.Status, Is.EqualTo(Status.ErrorInvalidArgument));
+            ex = Assert.Throws<DrapeException>(() => Stability.ForGrid(grid, -1f, p, 1f / 60f));
+            Assert.That(ex.Status, Is.EqualTo(Status.ErrorInvalidArgument));
+        }
+
+        [Test]
+        public void StabilityEstimateForAMesh()
+        {
+            // Two triangles (a unit quad), XPBD defaults: 16 automatic substeps, no explicit bound.
+            float[] positions = { 0f, 0f, 0f, 1f, 0f, 0f, 1f, 0f, 1f, 0f, 0f, 1f };
+            int[] indices = { 0, 1, 2, 0, 2, 3 };
+            StabilityEstimate e = Stability.ForMesh(positions, indices, 0f, 1f, NativeWorld.DefaultParams(), 1f / 60f);
+            Assert.That(e.Substeps, Is.EqualTo(16u));
+            Assert.That(e.Stable, Is.EqualTo(1u));
+            int[] bad = { 0, 1, 9 };
+            var ex = Assert.Throws<DrapeException>(() => Stability.ForMesh(positions, bad, 0f, 1f, NativeWorld.DefaultParams(), 1f / 60f));
+            Assert.That(ex.Status, Is.EqualTo(Status.ErrorIndexOutOfRange));
         }
     }
 }
