@@ -11,3 +11,5 @@ bash tests/bench/run.sh --quick --out build/release/bench-quick
 # Hardening (issue 7): native suite under ASan+UBSan+LSan, libFuzzer on the C ABI (60 s under CI),
 # threading tests under TSan, native suite on arm64 under qemu-user. Parts: .ci/hardening.sh asan|fuzz|tsan|arm64
 bash .ci/hardening.sh
+# Windows: the native suite cross-built with mingw-w64, run under Wine.
+bash .ci/windows-tests.sh

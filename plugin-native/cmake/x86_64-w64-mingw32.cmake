@@ -3,7 +3,8 @@
 # backend's thread pool needs std::thread (the -win32 variants lack it); libgcc, libstdc++ and
 # winpthread are linked statically so drape.dll needs only Windows' own DLLs. GLES is off for
 # Windows (Unity on Windows renders with D3D11/12 or Vulkan, which the GLES backend cannot write).
-# Preset: windows-x64. No Windows tests run here (no Wine in CI).
+# Presets: windows-x64 (the DLL), windows-x64-tests (the native suite, run under Wine by
+# .ci/windows-tests.sh).
 set(CMAKE_SYSTEM_NAME Windows)
 set(CMAKE_SYSTEM_PROCESSOR x86_64)
 set(CMAKE_C_COMPILER x86_64-w64-mingw32-gcc-posix)
