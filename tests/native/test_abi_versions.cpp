@@ -45,7 +45,7 @@ TEST(AbiVersions, CurrentStructsStillHaveTheAbi1Layout) {
     EXPECT_EQ(sizeof(drape_grid_desc), kAbi1GridDesc);
     EXPECT_EQ(sizeof(drape_mesh_desc), kAbi1MeshDesc);
     EXPECT_EQ(sizeof(drape_params), kAbi1Params);
-    EXPECT_EQ(sizeof(drape_vertex_layout), kAbi1VertexLayout);
+    EXPECT_EQ(offsetof(drape_vertex_layout, origin), kAbi1VertexLayout);  // revision 1 added `origin`
     EXPECT_EQ(sizeof(drape_pin), kAbi1Pin);
     EXPECT_EQ(sizeof(drape_cloth_info), kAbi1ClothInfo);
     EXPECT_EQ(offsetof(drape_stats, sleeping), kAbi1StatsOld);
@@ -107,9 +107,17 @@ TEST(AbiVersions, InputStructsAtAbi1SizesAreAccepted) {
     t.struct_size = kAbi1Touch;
     EXPECT_DRAPE_OK(drape_cloth_drag(c, &v, &t, 1));
     EXPECT_DRAPE_OK(drape_cloth_step(c, 1 / 60.f));
-    float out[16 * 3];
-    drape_vertex_layout l{kAbi1VertexLayout, 12, 0, -1};
-    EXPECT_DRAPE_OK(drape_cloth_read(c, &l, out, sizeof out));
+    // drape_vertex_layout grew `origin` after ABI 1: a caller built against the 16-byte struct has
+    // other bytes where `origin` is now; they are not read, the default (0) is used instead.
+    drape_vertex_layout current{sizeof current, 12, 0, -1, {0, 0, 0}};
+    std::vector<float> expected(16 * 3), got(16 * 3);
+    EXPECT_DRAPE_OK(drape_cloth_read(c, &current, expected.data(), expected.size() * 4));
+    Abi1Buffer<drape_vertex_layout> old(current, kAbi1VertexLayout);  // 0xAB bytes after the ABI 1 fields
+    EXPECT_DRAPE_OK(drape_cloth_read(c, old.get(), got.data(), got.size() * 4));
+    EXPECT_EQ(got, expected);
+    current.origin[1] = 1.0f;  // the new field works when given
+    EXPECT_DRAPE_OK(drape_cloth_read(c, &current, got.data(), got.size() * 4));
+    EXPECT_FLOAT_EQ(got[1], expected[1] - 1.0f);
 
     // Sizes never shipped.
     for (uint32_t bad : {0u, kAbi1Params - 4, kAbi1Params + 4, 1000u}) {

@@ -134,6 +134,11 @@ STRUCTS = [
                field("stride", "u32", "bytes between vertices, >= 12, multiple of 4"),
                field("position_offset", "i32", "bytes, multiple of 4, or -1 = do not write"),
                field("normal_offset", "i32", "bytes, multiple of 4, or -1 = do not write"),
+               field("origin", "f32[3]",
+                     "positions are written relative to this point of simulation space (position - origin, "
+                     "computed in double): far from the world origin, write around a point near the cloth (the "
+                     "renderer's transform, a floating origin) to keep float precision. Must be 0 for "
+                     "drape_cloth_set_output_buffer", unit="m", default=[0.0, 0.0, 0.0], rev=1),
            ]),
     struct("drape_pin", "Pin",
            "Pins a caller vertex (inverse mass 0) at a target; pinning again moves it (the move is spread over "

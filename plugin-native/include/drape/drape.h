@@ -316,6 +316,11 @@ typedef struct drape_vertex_layout {
     uint32_t stride; /**< bytes between vertices, >= 12, multiple of 4 */
     int32_t position_offset; /**< bytes, multiple of 4, or -1 = do not write */
     int32_t normal_offset; /**< bytes, multiple of 4, or -1 = do not write */
+    float origin[3]; /**< m, positions are written relative to this point of simulation space (position -
+                          origin, computed in double): far from the world origin, write around a point near
+                          the cloth (the renderer's transform, a floating origin) to keep float precision.
+                          Must be 0 for drape_cloth_set_output_buffer. Default (0, 0, 0). Added in struct
+                          revision 1 (older sizes still accepted) */
 } drape_vertex_layout;
 /* GENERATED END drape_vertex_layout */
 

@@ -281,6 +281,8 @@ drape_status apply_edit(Cloth* c, Access access, Fn&& fn) {
 drape_status check_layout(const drape_vertex_layout* layout) {
     DRAPE_REQUIRE(layout->stride >= 12 && layout->stride % 4 == 0 && layout->stride <= 1024,
                   DRAPE_ERROR_INVALID_ARGUMENT, "stride must be a multiple of 4 in [12, 1024]");
+    DRAPE_REQUIRE(finite3(layout->origin), DRAPE_ERROR_NOT_FINITE, "layout->origin is NaN or infinite");
+    DRAPE_REQUIRE(bounded3(layout->origin), DRAPE_ERROR_INVALID_ARGUMENT, "layout->origin is beyond 1e6 m");
     DRAPE_REQUIRE(layout->position_offset >= 0 || layout->normal_offset >= 0, DRAPE_ERROR_INVALID_ARGUMENT,
                   "layout writes neither positions nor normals");
     for (int32_t off : {layout->position_offset, layout->normal_offset}) {
@@ -295,7 +297,9 @@ drape_status check_layout(const drape_vertex_layout* layout) {
     return DRAPE_OK;
 }
 
-drape_status finish_create(drape_world* world, const drape_cloth_desc* desc, Topology topo, drape_cloth** out) {
+// origin: where topo's coordinates start in the caller's space (Cloth::origin).
+drape_status finish_create(drape_world* world, const drape_cloth_desc* desc, Topology topo, drape_cloth** out,
+                           const glm::dvec3& origin) {
     World& w = *as_world(world);
     Cloth* cloth = nullptr;
 #ifdef DRAPE_WITH_GLES
@@ -316,6 +320,7 @@ drape_status finish_create(drape_world* world, const drape_cloth_desc* desc, Top
     }
 #endif
     if (!cloth) cloth = new Cloth(w, drape_backend(desc->backend), std::move(topo));
+    cloth->set_origin(origin);
     std::unique_ptr<Cloth> owned(cloth);
     w.add(cloth);
     uintptr_t handle = 0;
@@ -384,6 +389,41 @@ drape_status check_mesh(const drape_mesh_desc* mesh) {
                   "weld_distance must be in [0, 1] m");
     if (drape_status s = check_xyz_array(mesh->positions, mesh->vertex_count, "mesh position")) return s;
     return DRAPE_OK;
+}
+
+// ---- caller space <-> a cloth's local coordinates (Cloth::origin), in double -----------------
+
+void to_local(const Cloth& c, const float* in, float* out) {
+    const glm::dvec3& o = c.origin();
+    for (int k = 0; k < 3; ++k) out[k] = float(double(in[k]) - o[k]);
+}
+
+// Origin of a new CPU cloth whose first vertex is at p: 0 near the caller's origin, else p in
+// whole metres (the GLES backend's shaders work in simulation space: its origin stays 0).
+glm::dvec3 initial_origin(uint32_t backend, const float* p) {
+    if (backend == DRAPE_BACKEND_GLES) return glm::dvec3(0.0);
+    if (std::fabs(p[0]) <= kRecentreDistance && std::fabs(p[1]) <= kRecentreDistance &&
+        std::fabs(p[2]) <= kRecentreDistance)
+        return glm::dvec3(0.0);
+    return glm::round(glm::dvec3(p[0], p[1], p[2]));
+}
+
+void xyz_to_local(const Cloth& c, std::vector<float>& xyz) {
+    for (size_t v = 0; v + 2 < xyz.size(); v += 3) to_local(c, &xyz[v], &xyz[v]);
+}
+
+// Positions written by Cloth::read / GlesCloth::read_out are local: move them to the caller's
+// space, relative to layout->origin (positions - origin, computed in double).
+void positions_out(const Cloth& c, const drape_vertex_layout& layout, void* dst) {
+    const glm::dvec3 shift = c.origin() - glm::dvec3(layout.origin[0], layout.origin[1], layout.origin[2]);
+    if (layout.position_offset < 0 || shift == glm::dvec3(0.0)) return;
+    char* bytes = static_cast<char*>(dst) + layout.position_offset;
+    for (uint32_t v = 0; v < c.topology().vertex_count; ++v) {
+        float p[3];
+        std::memcpy(p, bytes + size_t(v) * layout.stride, sizeof p);
+        for (int k = 0; k < 3; ++k) p[k] = float(double(p[k]) + shift[k]);
+        std::memcpy(bytes + size_t(v) * layout.stride, p, sizeof p);
+    }
 }
 
 }  // namespace
@@ -460,7 +500,13 @@ drape_status drape_cloth_create_grid(drape_world* world, const drape_cloth_desc*
     DRAPE_CHECK_STRUCT(grid, drape_grid_desc);
     DRAPE_REQUIRE(out_cloth != nullptr, DRAPE_ERROR_NULL_POINTER, "out_cloth is NULL");
     if (drape_status s = check_grid(grid)) return s;
-    return guarded([&] { return finish_create(world, desc, cook_grid(*grid, desc->total_mass), out_cloth); });
+    return guarded([&] {
+        // Cooked and simulated around the cloth's own origin (float-safe anywhere).
+        const glm::dvec3 origin = initial_origin(desc->backend, grid->origin);
+        drape_grid_desc local = *grid;
+        for (int k = 0; k < 3; ++k) local.origin[k] = float(double(grid->origin[k]) - origin[k]);
+        return finish_create(world, desc, cook_grid(local, desc->total_mass), out_cloth, origin);
+    });
 }
 
 drape_status drape_cloth_create_mesh(drape_world* world, const drape_cloth_desc* desc, const drape_mesh_desc* mesh,
@@ -472,10 +518,18 @@ drape_status drape_cloth_create_mesh(drape_world* world, const drape_cloth_desc*
     DRAPE_REQUIRE(out_cloth != nullptr, DRAPE_ERROR_NULL_POINTER, "out_cloth is NULL");
     if (drape_status s = check_mesh(mesh)) return s;
     return guarded([&] {
+        const glm::dvec3 origin = initial_origin(desc->backend, mesh->positions);  // see create_grid
+        drape_mesh_desc local = *mesh;
+        std::vector<float> shifted;
+        if (origin != glm::dvec3(0.0)) {
+            shifted.resize(size_t(mesh->vertex_count) * 3);
+            for (size_t k = 0; k < shifted.size(); ++k) shifted[k] = float(double(mesh->positions[k]) - origin[k % 3]);
+            local.positions = shifted.data();
+        }
         Topology topo;
-        CookResult r = cook_mesh(*mesh, desc->total_mass, topo);
+        CookResult r = cook_mesh(local, desc->total_mass, topo);
         if (r.status != DRAPE_OK) return fail(r.status, r.message);
-        return finish_create(world, desc, std::move(topo), out_cloth);
+        return finish_create(world, desc, std::move(topo), out_cloth, origin);
     });
 }
 
@@ -546,6 +600,7 @@ drape_status drape_cloth_set_pins(drape_cloth* cloth, const drape_pin* pins, uin
             all_pinned = c->is_pinned(pin.vertex);
         }
         std::vector<drape_pin> copy(std::move(current));
+        for (drape_pin& pin : copy) to_local(*c, pin.position, pin.position);
         return apply_edit(as_cloth(cloth), all_pinned ? Access::NoState : Access::ReadsState,
                           [copy](Cloth& c) { c.set_pins(copy.data(), uint32_t(copy.size())); });
     });
@@ -570,6 +625,7 @@ drape_status drape_cloth_set_positions(drape_cloth* cloth, const float* position
     if (drape_status s = check_xyz_array(positions, count, "position")) return s;
     return guarded([&] {
         std::vector<float> copy(positions, positions + size_t(count) * 3);
+        xyz_to_local(*as_cloth(cloth), copy);
         return apply_edit(as_cloth(cloth), Access::WritesState, [copy](Cloth& c) { c.set_positions(copy.data()); });
     });
 }
@@ -607,10 +663,12 @@ drape_status drape_cloth_read(const drape_cloth* cloth, const drape_vertex_layou
 #ifdef DRAPE_WITH_GLES
         if (as_cloth(cloth)->backend() == DRAPE_BACKEND_GLES) {
             Result r = static_cast<gles::GlesCloth*>(const_cast<Cloth*>(as_cloth(cloth)))->read_out(*layout, dst);
+            if (r.ok()) positions_out(*as_cloth(cloth), *layout, dst);
             return r.ok() ? ok() : fail(r.status, r.message);
         }
 #endif
         as_cloth(cloth)->read(*layout, dst);
+        positions_out(*as_cloth(cloth), *layout, dst);
         return ok();
     });
 }
@@ -703,11 +761,14 @@ drape_status drape_cloth_set_output_buffer(drape_cloth* cloth, uint32_t gl_buffe
         if (drape_status s = read_struct(layout, "layout", &layout_current_)) return s;
         layout = &layout_current_;
         if (drape_status s = check_layout(layout)) return s;
+        DRAPE_REQUIRE(layout->origin[0] == 0 && layout->origin[1] == 0 && layout->origin[2] == 0,
+                      DRAPE_ERROR_INVALID_ARGUMENT,
+                      "layout->origin must be 0 for a GL output buffer (the GPU writes simulation space)");
     }
     DRAPE_REQUIRE(as_cloth(cloth)->backend() == DRAPE_BACKEND_GLES, DRAPE_ERROR_INVALID_ARGUMENT,
                   "an output GL buffer needs a GLES cloth; use drape_cloth_read for CPU cloths");
 #ifdef DRAPE_WITH_GLES
-    const drape_vertex_layout l = layout ? *layout : drape_vertex_layout{sizeof(drape_vertex_layout), 12, 0, -1};
+    const drape_vertex_layout l = layout ? *layout : drape_vertex_layout{sizeof(drape_vertex_layout), 12, 0, -1, {0, 0, 0}};
     return guarded([&] {
         Result r = static_cast<gles::GlesCloth*>(as_cloth(cloth))->set_output(gl_buffer, l);
         return r.ok() ? ok() : fail(r.status, r.message);
@@ -831,6 +892,7 @@ drape_status drape_cloth_set_colliders(drape_cloth* cloth, const drape_collider*
     return guarded([&] {
         // Copied: a GLES cloth on Unity's main thread applies it on the render thread.
         std::vector<drape_collider> copy(std::move(current));
+        for (drape_collider& col : copy) to_local(*as_cloth(cloth), col.position, col.position);
         return apply_edit(as_cloth(cloth), Access::NoState,
                           [copy](Cloth& c) { c.set_colliders(copy.data(), uint32_t(copy.size())); });
     });
@@ -940,7 +1002,9 @@ drape_status drape_cloth_set_owner(drape_cloth* cloth, const drape_owner* owner)
     if (drape_status s = abi::Layout<drape_owner>::check(*owner, &problem)) return fail(s, "owner " + problem);
     if (drape_status s = check_unit_quat(owner->rotation, "owner")) return s;
     return guarded([&] {
-        as_cloth(cloth)->set_owner(*owner);
+        drape_owner local = *owner;
+        to_local(*as_cloth(cloth), owner->position, local.position);
+        as_cloth(cloth)->set_owner(local);
         return ok();
     });
 }

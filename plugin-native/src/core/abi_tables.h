@@ -130,7 +130,7 @@ template <>
 struct Layout<drape_vertex_layout> {
     static constexpr const char* name = "drape_vertex_layout";
     /// Oldest first; the last is sizeof.
-    static constexpr uint32_t sizes[] = {uint32_t(sizeof(drape_vertex_layout))};
+    static constexpr uint32_t sizes[] = {uint32_t(offsetof(drape_vertex_layout, origin)), uint32_t(sizeof(drape_vertex_layout))};
     static drape_vertex_layout defaults() {
         drape_vertex_layout s{};
         s.struct_size = sizeof s;

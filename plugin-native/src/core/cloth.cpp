@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "backend/cpu/kernels.h"
@@ -190,8 +191,30 @@ void Cloth::for_particles(Fn&& fn) {
         fn(0u, topo_.particle_count);
 }
 
+// Far from the caller's origin floats lose the cloth's detail (1e4 m: 1 mm steps), so positions
+// are held relative to origin_; once the cloth has drifted kRecentreDistance (core/params.h) from
+// it, origin_ moves by whole metres and every held position (state, pin targets, colliders, owner, the
+// self-collision reference) shifts back by the same exact amount.
+void Cloth::recentre() {
+    const glm::vec3 x0 = glm::vec3(buffers_[cur_][0]);
+    if (!(std::fabs(x0.x) > kRecentreDistance || std::fabs(x0.y) > kRecentreDistance ||
+          std::fabs(x0.z) > kRecentreDistance))
+        return;
+    const glm::vec3 shift = glm::round(x0);
+    origin_ += glm::dvec3(shift);
+    for (Particle& p : buffers_[cur_]) p = Particle(glm::vec3(p) - shift, p.w);
+    for (glm::vec3& t : kinematic_target_) t -= shift;
+    for (ColliderState& c : ix_.colliders) {
+        c.pos_start -= shift;
+        c.pos_end -= shift;
+    }
+    ix_.owner_pos -= shift;
+    for (glm::vec3& b : sc_.built) b -= shift;
+}
+
 Result Cloth::step(float dt) {
     if (skip_step_asleep()) return {};  // issue 5: asleep -> no work (core/interaction.cpp)
+    recentre();
     const auto t0 = std::chrono::steady_clock::now();
     const uint32_t n = topo_.particle_count;
     const NeighbourTable& nb = topo_.nbr;
@@ -409,7 +432,7 @@ void Cloth::stats(drape_stats* out) const {
         if (w > 0) {
             const glm::vec3 v = glm::vec3(d[i]) / h_prev_;
             kinetic += 0.5 * double(glm::dot(v, v)) / w;
-            potential -= double(glm::dot(g, glm::vec3(x[i]))) / w;
+            potential -= glm::dot(glm::dvec3(g), origin_ + glm::dvec3(glm::vec3(x[i]))) / w;
         }
         if (params_.model == DRAPE_MODEL_PBD) continue;
         const size_t row = size_t(i) * nb.slots;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/ext/vector_double3.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -81,10 +82,19 @@ public:
     /// Substeps a step of dt uses with the current parameters.
     uint32_t substeps_for(float dt) const;
 
+    /// The point the cloth's coordinates are measured from, in the caller's space, m. Every
+    /// position held by the cloth is relative to it (float precision does not depend on where the
+    /// cloth is); the C ABI converts positions in and out. Set at creation; a CPU step moves it
+    /// in whole metres when the cloth has drifted (recentre).
+    const glm::dvec3& origin() const { return origin_; }
+    void set_origin(const glm::dvec3& origin) { origin_ = origin; }
+
 protected:
     using Particle = glm::vec4;
 
     void refresh_derived();  // after params or masses change
+    void recentre();         // moves origin_ near the cloth, shifting every held position
+    glm::dvec3 origin_{0.0};
     // issue 5 hooks in step() (core/interaction.cpp)
     bool skip_step_asleep();
     void interaction_substep(uint32_t sub, uint32_t substeps);

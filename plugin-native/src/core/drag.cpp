@@ -5,9 +5,10 @@
 
 namespace drape {
 
-ScreenMapping make_screen_mapping(const drape_view& v) {
+ScreenMapping make_screen_mapping(const drape_view& v, const glm::dvec3& origin) {
     ScreenMapping m;
-    const glm::dmat4 world(glm::make_mat4(v.world));
+    glm::dmat4 world(glm::make_mat4(v.world));
+    world[3] += world * glm::dvec4(origin, 0.0);  // world * translate(origin)
     const glm::dmat4 view(glm::make_mat4(v.view));
     const glm::dmat4 proj(glm::make_mat4(v.projection));
     m.mvp = proj * view * world;

@@ -35,7 +35,9 @@ struct ScreenMapping {
     glm::dvec2 viewport; ///< px
 };
 
-ScreenMapping make_screen_mapping(const drape_view& v);
+/// origin: where a cloth's local coordinates start in simulation space (Cloth::origin); the
+/// mapping then takes local coordinates.
+ScreenMapping make_screen_mapping(const drape_view& v, const glm::dvec3& origin = glm::dvec3(0.0));
 
 /// Pixel position (origin bottom-left) and NDC depth of x; false if x is at or behind the eye.
 bool to_screen(const ScreenMapping& m, const glm::vec3& x, glm::dvec2* px, double* ndc_z);

@@ -243,7 +243,7 @@ void Cloth::drag(const drape_view& view, const drape_touch* touches, uint32_t co
         ix_.drag_marked.assign(n, 0);
         ix_.drag_particles.reserve(n);
     }
-    const ScreenMapping m = make_screen_mapping(view);
+    const ScreenMapping m = make_screen_mapping(view, origin_);
     const Particle* x = buffers_[cur_].data();
     bool moved = false;
     for (uint32_t i = 0; i < n; ++i) {
@@ -274,7 +274,7 @@ void Cloth::drag(const drape_view& view, const drape_touch* touches, uint32_t co
 
 uint32_t Cloth::grab(const drape_view& view, uint32_t touch_id, const float position[2], float pick_radius) {
     grab_release(touch_id);
-    const ScreenMapping m = make_screen_mapping(view);
+    const ScreenMapping m = make_screen_mapping(view, origin_);
     const Particle* x = buffers_[cur_].data();
     const glm::dvec2 touch(position[0], position[1]);
     double best = double(pick_radius) * pick_radius;
@@ -307,7 +307,7 @@ uint32_t Cloth::grab(const drape_view& view, uint32_t touch_id, const float posi
 bool Cloth::grab_move(const drape_view& view, uint32_t touch_id, const float position[2]) {
     for (const Grab& g : ix_.grabs) {
         if (g.touch_id != touch_id) continue;
-        const ScreenMapping m = make_screen_mapping(view);
+        const ScreenMapping m = make_screen_mapping(view, origin_);
         const glm::vec3 target(from_screen(m, glm::dvec2(position[0], position[1]), g.ndc_z));
         if (!std::isfinite(target.x) || !std::isfinite(target.y) || !std::isfinite(target.z)) return false;
         if (!pinned_[g.particle]) {  // the host released the pin under the grab: hold it again

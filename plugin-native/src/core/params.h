@@ -44,6 +44,12 @@ struct StabilityEstimate {
 /// For a cloth with this topology (cooked masses, no pins) and parameters.
 StabilityEstimate estimate_stability(const Topology& topo, const drape_params& p, float dt);
 
+/// A cloth farther than this from its origin (Cloth::origin; any axis, m) is re-centred: local
+/// coordinates stay within a few metres, where float resolution is about 5e-7 m. A cloth created
+/// within it of the caller's origin starts with origin 0 (same arithmetic as simulating in the
+/// caller's space).
+constexpr float kRecentreDistance = 4.0f;
+
 /// Strain beyond which a step counts as diverged ("runaway strain", accuracy.md).
 constexpr float kRunawayStrain = 10.0f;
 

@@ -64,6 +64,7 @@ static const probe_entry k_entries[] = {
     FIELD(drape_vertex_layout, stride),
     FIELD(drape_vertex_layout, position_offset),
     FIELD(drape_vertex_layout, normal_offset),
+    FIELD(drape_vertex_layout, origin),
 
     STRUCT(drape_pin),
     FIELD(drape_pin, struct_size),

@@ -10,6 +10,7 @@ namespace Drape.Core
             Stride = stride;
             PositionOffset = positionOffset;
             NormalOffset = normalOffset;
+            Origin = default;  // positions in simulation space
         }
     }
 

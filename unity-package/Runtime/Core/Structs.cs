@@ -116,6 +116,12 @@ namespace Drape.Core
         public int PositionOffset;
         /// <summary>Bytes, multiple of 4, or -1 = do not write.</summary>
         public int NormalOffset;
+        /// <summary>M, positions are written relative to this point of simulation space (position - origin,
+        /// computed in double): far from the world origin, write around a point near the cloth (the
+        /// renderer's transform, a floating origin) to keep float precision. Must be 0 for
+        /// drape_cloth_set_output_buffer. Default (0, 0, 0). Added in struct revision 1 (older sizes still
+        /// accepted).</summary>
+        public Float3 Origin;
     }
 
     /// <summary>C twin: drape_pin. Pins a caller vertex (inverse mass 0) at a target; pinning again moves it

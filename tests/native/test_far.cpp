@@ -1,0 +1,96 @@
+// Float-safe anywhere: a cloth simulates relative to its own origin (re-centred as it moves), so
+// the same scene built 1e2, 1e4 or 1e5 m from the caller's origin keeps its shape. Before, a
+// 0.5 m cloth at (1e4, 500, -1e4) differed from the one at the origin by 0.1 m after 2 s.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "drape_test_util.h"
+
+using namespace drape_test;
+
+namespace {
+
+constexpr float kSize = 0.5f;  // m, the cloth's width and height
+constexpr uint32_t kN = 11;    // vertices per side
+
+// A 0.5 m cloth hanging from two corners that move sideways 6.25 cm per frame (whole multiples of
+// float's resolution at 1e5 m, so every scene gets the same inputs), with a sphere collider
+// following under it, stepped 2 s at 60 Hz. Positions come back relative to `offset` (written
+// in double by the library: drape_vertex_layout.origin), or in the caller's space if !relative.
+std::vector<float> run(const float offset[3], bool relative = true) {
+    WorldPtr w = make_world(1);
+    drape_grid_desc g = grid_desc(kN, kN, kSize, kSize);
+    for (int k = 0; k < 3; ++k) g.origin[k] = offset[k];
+    g.axis_u[0] = 1;
+    g.axis_v[1] = -1;  // hanging in the x-y plane
+    drape_cloth* c = make_grid(w.get(), g, 0.1f);
+    drape_params p{};
+    drape_params_default(&p);
+    p.damping = 0.01f;
+    EXPECT_DRAPE_OK(drape_cloth_set_params(c, &p));
+    for (int f = 0; f < 120; ++f) {
+        const float dx = 0.0625f * float(f);
+        drape_pin pins[2] = {{sizeof(drape_pin), 0, {offset[0] + dx, offset[1], offset[2]}},
+                             {sizeof(drape_pin), kN - 1, {offset[0] + dx + kSize, offset[1], offset[2]}}};
+        EXPECT_DRAPE_OK(drape_cloth_set_pins(c, pins, 2));
+        drape_collider sphere{};
+        sphere.struct_size = sizeof sphere;
+        sphere.shape = DRAPE_COLLIDER_SPHERE;
+        sphere.rotation[3] = 1;
+        sphere.size[0] = 0.125f;
+        sphere.position[0] = offset[0] + dx + 0.25f;
+        sphere.position[1] = offset[1] - 0.5f;
+        sphere.position[2] = offset[2] + 0.125f;
+        sphere.margin = 0.0078125f;
+        EXPECT_DRAPE_OK(drape_cloth_set_colliders(c, &sphere, 1));
+        EXPECT_DRAPE_OK(drape_cloth_step(c, 1 / 60.f));
+    }
+    std::vector<float> out(kN * kN * 3);
+    drape_vertex_layout l{sizeof l, 12, 0, -1, {0, 0, 0}};
+    if (relative)
+        for (int k = 0; k < 3; ++k) l.origin[k] = offset[k];
+    EXPECT_DRAPE_OK(drape_cloth_read(c, &l, out.data(), out.size() * sizeof(float)));
+    return out;
+}
+
+float max_difference(const std::vector<float>& a, const std::vector<float>& b, const float shift[3]) {
+    float worst = 0;
+    for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::fabs(a[i] - (b[i] - shift[i % 3])));
+    return worst;
+}
+
+}  // namespace
+
+TEST(Far, ShapeFarFromTheOriginMatchesTheShapeAtTheOrigin) {
+    const float zero[3] = {0, 0, 0};
+    const std::vector<float> at_origin = run(zero);
+    // The cloth moved: its first vertex went 7.4 m sideways (past the re-centring distance).
+    EXPECT_GT(at_origin[0], 7.0f);
+    for (float far : {1e2f, 1e4f, 1e5f}) {
+        const float offset[3] = {far, 500.0f, -far};
+        const std::vector<float> moved = run(offset);
+        const float diff = max_difference(at_origin, moved, zero);
+        std::printf("[ measured ] cloth at %.0e m: max |shape - shape at origin| = %.3g m (cloth %.2f m)\n", far, diff,
+                    kSize);
+        EXPECT_LE(diff, 1e-4f * kSize) << "at " << far << " m";
+    }
+}
+
+// Read in the caller's own space (no layout origin), the positions are the relative ones plus the
+// offset, rounded once to float: within half a float step at that distance.
+TEST(Far, PositionsComeOutInTheCallersSpace) {
+    const float zero[3] = {0, 0, 0};
+    const std::vector<float> at_origin = run(zero);
+    for (float far : {1e2f, 1e4f}) {
+        const float offset[3] = {far, 500.0f, -far};
+        const std::vector<float> world = run(offset, false);
+        float largest = 0;
+        for (float x : world) largest = std::max(largest, std::fabs(x));
+        const float half_step = 0.5f * (std::nextafter(largest, 2 * largest) - largest);
+        const float diff = max_difference(at_origin, world, offset);
+        std::printf("[ measured ] cloth at %.0e m read in the caller's space: max error %.3g m (half a float step "
+                    "there: %.3g m)\n", far, diff, half_step);
+        EXPECT_LE(diff, half_step) << "at " << far << " m";
+    }
+}
