@@ -94,3 +94,66 @@ TEST(Far, PositionsComeOutInTheCallersSpace) {
         EXPECT_LE(diff, half_step) << "at " << far << " m";
     }
 }
+
+namespace {
+
+// Grab a vertex through a camera 3 m in front of the cloth and drag it; the same pixels are used
+// for every offset (the camera moves with the cloth), so the shapes must agree.
+std::vector<float> grab_and_drag(float far) {
+    const float offset[3] = {far, 500.0f, -far};
+    WorldPtr w = make_world(1);
+    drape_grid_desc g = grid_desc(kN, kN, kSize, kSize);
+    for (int k = 0; k < 3; ++k) g.origin[k] = offset[k];
+    g.axis_u[0] = 1;
+    g.axis_v[1] = -1;
+    drape_cloth* c = make_grid(w.get(), g, 0.1f);
+    std::vector<float> inv(kN * kN, 1.0f / (0.1f / (kN * kN)));
+    inv[0] = inv[kN - 1] = 0;  // pinned where they are
+    EXPECT_DRAPE_OK(drape_cloth_set_inverse_masses(c, inv.data(), uint32_t(inv.size())));
+    drape_view v{};
+    v.struct_size = sizeof v;
+    for (int k = 0; k < 16; k += 5) v.world[k] = v.view[k] = 1;
+    v.view[12] = -offset[0] - 0.25f;  // camera at offset + (0.25, -0.25, 3), looking down -z
+    v.view[13] = -offset[1] + 0.25f;
+    v.view[14] = -offset[2] - 3.0f;
+    const float f = 1.0f / std::tan(0.5f), zn = 0.1f, zf = 100;
+    v.projection[0] = v.projection[5] = f;
+    v.projection[10] = (zf + zn) / (zn - zf);
+    v.projection[11] = -1;
+    v.projection[14] = 2 * zf * zn / (zn - zf);
+    v.viewport[0] = v.viewport[1] = 400;
+    // The cloth spans pixels 169.5 to 230.5 in y (f * 0.25 / 3 of the half viewport either way).
+    const float at[2] = {201, 171};  // near the bottom middle vertex, at (200, 169.5)
+    uint32_t grabbed = UINT32_MAX;
+    EXPECT_DRAPE_OK(drape_cloth_grab(c, &v, 1, at, 10, &grabbed));
+    EXPECT_EQ(grabbed, (kN - 1) * kN + kN / 2);
+    const float finger[2] = {240, 150};
+    EXPECT_DRAPE_OK(drape_cloth_grab_move(c, &v, 1, finger));
+    drape_touch t{};
+    drape_touch_default(&t);
+    t.position[0] = 185;
+    t.position[1] = 215;
+    t.motion[0] = -20;
+    EXPECT_DRAPE_OK(drape_cloth_drag(c, &v, &t, 1));
+    for (int s = 0; s < 30; ++s) EXPECT_DRAPE_OK(drape_cloth_step(c, 1 / 60.f));
+    std::vector<float> out(kN * kN * 3);
+    drape_vertex_layout l{sizeof l, 12, 0, -1, {offset[0], offset[1], offset[2]}};
+    EXPECT_DRAPE_OK(drape_cloth_read(c, &l, out.data(), out.size() * sizeof(float)));
+    return out;
+}
+
+}  // namespace
+
+TEST(Far, GrabAndDragFarFromTheOriginMatchTheOrigin) {
+    const float zero[3] = {0, 0, 0};
+    const std::vector<float> at_origin = grab_and_drag(0);
+    // The grabbed vertex (rest: (0.25, -0.5, 0)) followed the finger right and down (screen y is up).
+    const uint32_t held = (kN - 1) * kN + kN / 2;
+    EXPECT_GT(at_origin[3 * held], 0.3f);
+    EXPECT_LT(at_origin[3 * held + 1], -0.55f);
+    for (float far : {1e2f, 1e4f, 1e5f}) {
+        const float diff = max_difference(at_origin, grab_and_drag(far), zero);
+        std::printf("[ measured ] grab + drag at %.0e m: max |shape - shape at origin| = %.3g m\n", far, diff);
+        EXPECT_LE(diff, 1e-4f * kSize) << "at " << far << " m";
+    }
+}
