@@ -3,8 +3,10 @@
 #  1. the Unity package's .meta files (complete, unique, no orphans) and version, plus a self-test
 #     proving that check fails on broken trees;
 #  2. compile checks of unity-package/Runtime, Editor and Samples~ against the signature-only Unity
-#     stand-ins (tests/dotnet/UnityStandIn: compile only, nothing runs), with legacy input and Input System;
-#  3. NUnit tests of Drape.Core (unity-package/Tests/Core + tests/dotnet) against libdrape.so.
+#     stand-ins (tests/dotnet/UnityStandIn, checked against Unity's C# reference source by its
+#     unity_api.py), with legacy input and Input System, as Unity 2022.3 and as 6000.5;
+#  3. NUnit tests of Drape.Core (unity-package/Tests/Core + tests/dotnet) against libdrape.so;
+#  4. NUnit tests of the MonoBehaviours against the stand-in's minimal behaviour and libdrape.so.
 # NuGet packages (NUnit, NUnit3TestAdapter, Microsoft.NET.Test.Sdk) are restored by dotnet from the
 # registry into ~/.nuget/packages; later runs restore from that cache without the network.
 set -euo pipefail
@@ -18,8 +20,14 @@ fi
 node .ci/unity-meta.mjs selftest
 node .ci/unity-meta.mjs check unity-package --root-version package.json
 
-dotnet build tests/dotnet/CompileCheck/Drape.Editor.CompileCheck.csproj -nologo -v quiet
-dotnet build tests/dotnet/CompileCheck/Drape.Runtime.CompileCheck.csproj -nologo -v quiet -p:DrapeInput=InputSystem
-dotnet build tests/dotnet/CompileCheck/Drape.Samples.CompileCheck.csproj -nologo -v quiet
+# Each compile check twice: as Unity 2022.3 and as 6000.5 (its UNITY_*_OR_NEWER defines; the
+# stand-ins mark APIs Obsolete, or Obsolete as an error, where that version's reference source does).
+for unity in 2022.3 6000.5; do
+  dotnet build tests/dotnet/CompileCheck/Drape.Editor.CompileCheck.csproj -nologo -v quiet -p:UnityVersion=$unity
+  dotnet build tests/dotnet/CompileCheck/Drape.Runtime.CompileCheck.csproj -nologo -v quiet -p:UnityVersion=$unity -p:DrapeInput=InputSystem
+  dotnet build tests/dotnet/CompileCheck/Drape.Samples.CompileCheck.csproj -nologo -v quiet -p:UnityVersion=$unity
+done
 
 dotnet test tests/dotnet/Drape.Core.Tests/Drape.Core.Tests.csproj -nologo -v quiet
+# The MonoBehaviours run against the stand-in (legacy input, Unity 2022.3 defines).
+dotnet test tests/dotnet/Drape.Runtime.Tests/Drape.Runtime.Tests.csproj -nologo -v quiet

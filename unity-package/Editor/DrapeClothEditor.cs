@@ -5,21 +5,52 @@ using UnityEngine.Rendering;
 
 namespace Drape.Editing
 {
-    /// <summary>Inspector for <see cref="DrapeCloth"/>: the serialized fields plus warnings about
-    /// settings that will misbehave, and live statistics in Play mode.</summary>
+    /// <summary>Inspector for <see cref="DrapeCloth"/>: the serialized fields with stiffness sliders in
+    /// the active model's units and range, fabric presets, Scene-view pin picking (with Undo), warnings
+    /// about settings that will misbehave, which backend runs and why, and live statistics in Play
+    /// mode (repainted four times a second, not every frame).</summary>
     [CustomEditor(typeof(DrapeCloth))]
     [CanEditMultipleObjects]
     public sealed class DrapeClothEditor : UnityEditor.Editor
     {
+        private static readonly string[] s_customDrawn =
+            { "m_Script", "_structuralStiffness", "_shearStiffness", "_bendStiffness", "_pbdStiffness" };
+        private static readonly GUIContent s_structural = new GUIContent("Structural Stiffness", "Stretch springs/constraints.");
+        private static readonly GUIContent s_shear = new GUIContent("Shear Stiffness", "Shear springs (grid diagonals).");
+        private static readonly GUIContent s_bend = new GUIContent("Bend Stiffness", "Bend springs (two apart / across an edge).");
+        private const double RepaintInterval = 0.25;
+
+        private double _nextRepaint;
+        private bool _editingPins;
+        private Vector3[] _pickPositions;
+
+        private void OnEnable() => EditorApplication.update += ThrottledRepaint;
+
+        private void OnDisable() => EditorApplication.update -= ThrottledRepaint;
+
+        public override bool RequiresConstantRepaint() => false;
+
+        private void ThrottledRepaint()
+        {
+            if (!EditorApplication.isPlaying || EditorApplication.timeSinceStartup < _nextRepaint) return;
+            _nextRepaint = EditorApplication.timeSinceStartup + RepaintInterval;
+            Repaint();
+        }
+
         public override void OnInspectorGUI()
         {
             serializedObject.Update();
-            DrawDefaultInspector();
+            DrawPropertiesExcluding(serializedObject, s_customDrawn);
+            DrawStiffness();
             serializedObject.ApplyModifiedProperties();
 
             var cloth = (DrapeCloth)target;
+            DrawPresets(cloth);
+            DrawPinEditing(cloth);
             foreach (string warning in Warnings(cloth))
                 EditorGUILayout.HelpBox(warning, MessageType.Warning);
+            string backend = BackendExplanation(cloth);
+            if (backend.Length > 0) EditorGUILayout.HelpBox(backend, MessageType.Info);
 
             if (Application.isPlaying && cloth.NativeCloth != null)
             {
@@ -34,8 +65,137 @@ namespace Drape.Editing
                                                                    (s.RmsStrain * 100f).ToString("F2") + " %");
                 EditorGUILayout.LabelField("Rolled-back steps", s.UnstableSteps.ToString());
                 if (cloth.IsAsleep) EditorGUILayout.HelpBox("Asleep (came to rest; steps cost nothing until something changes).", MessageType.Info);
-                Repaint();
             }
+        }
+
+        /// <summary>Stiffness sliders in the active model's range: N/m per spring (mass-spring, XPBD)
+        /// or PBD's fraction per iteration; each model keeps its own values.</summary>
+        private void DrawStiffness()
+        {
+            var model = (Model)(uint)serializedObject.FindProperty("_model").intValue;
+            if (model == Model.Pbd)
+            {
+                SerializedProperty pbd = serializedObject.FindProperty("_pbdStiffness");
+                EditorGUILayout.Slider(pbd.FindPropertyRelative("x"), 0f, 1f, s_structural);
+                EditorGUILayout.Slider(pbd.FindPropertyRelative("y"), 0f, 1f, s_shear);
+                EditorGUILayout.Slider(pbd.FindPropertyRelative("z"), 0f, 1f, s_bend);
+                return;
+            }
+            float max = DrapeCloth.MaxStiffness(model) * 0.2f; // slider to 20000 N/m; scripts may go to the limit
+            EditorGUILayout.Slider(serializedObject.FindProperty("_structuralStiffness"), 0f, max, s_structural);
+            EditorGUILayout.Slider(serializedObject.FindProperty("_shearStiffness"), 0f, max, s_shear);
+            EditorGUILayout.Slider(serializedObject.FindProperty("_bendStiffness"), 0f, max, s_bend);
+        }
+
+        private void DrawPresets(DrapeCloth cloth)
+        {
+            EditorGUILayout.LabelField("Fabric presets (XPBD, physical units)", EditorStyles.boldLabel);
+            foreach (DrapeFabric fabric in DrapeFabric.Presets)
+            {
+                if (!GUILayout.Button(fabric.Name + ": " + (fabric.ArealDensity * 1000f).ToString("F0") + " g/m^2, stretch " +
+                                      fabric.StretchStiffness.ToString("F0") + " N/m")) continue;
+                foreach (Object t in targets)
+                {
+                    var c = (DrapeCloth)t;
+                    Undo.RecordObject(c, "Apply fabric " + fabric.Name);
+                    c.ApplyFabric(fabric);
+                    EditorUtility.SetDirty(c);
+                }
+            }
+        }
+
+        private void DrawPinEditing(DrapeCloth cloth)
+        {
+            string label = _editingPins ? "Stop editing pins" : "Edit pins in the Scene view (click vertices)";
+            if (GUILayout.Button(label))
+            {
+                _editingPins = !_editingPins;
+                _pickPositions = _editingPins ? cloth.AuthoringPositions() : null;
+                SceneView.RepaintAll();
+            }
+            if (_editingPins)
+                EditorGUILayout.HelpBox("Click a vertex to pin or unpin it (Undo works). Pin Mode becomes Vertex List; " +
+                                        "the pins in use are kept as its starting list.", MessageType.Info);
+        }
+
+        /// <summary>Scene view: while editing pins, draws every vertex (pinned ones larger) and toggles
+        /// the one nearest the click (within 12 px) in the Vertex List, with Undo.</summary>
+        private void OnSceneGUI()
+        {
+            if (!_editingPins || _pickPositions == null) return;
+            var cloth = (DrapeCloth)target;
+            Event e = Event.current;
+            int control = GUIUtility.GetControlID(FocusType.Passive);
+            if (e.type == EventType.Layout) HandleUtility.AddDefaultControl(control);
+            Matrix4x4 toWorld = cloth.transform.localToWorldMatrix;
+            if (e.type == EventType.Repaint)
+            {
+                for (int i = 0; i < _pickPositions.Length; ++i)
+                {
+                    Vector3 p = toWorld.MultiplyPoint3x4(_pickPositions[i]);
+                    bool pinned = IsPinned(cloth, i);
+                    Handles.color = pinned ? new Color(1f, 0.4f, 0.1f) : new Color(0.6f, 0.8f, 1f, 0.6f);
+                    Handles.DotHandleCap(0, p, Quaternion.identity, HandleUtility.GetHandleSize(p) * (pinned ? 0.04f : 0.02f), EventType.Repaint);
+                }
+                return;
+            }
+            if (e.type != EventType.MouseDown || e.button != 0 || e.alt) return;
+            int nearest = -1;
+            float best = 12f * 12f;
+            for (int i = 0; i < _pickPositions.Length; ++i)
+            {
+                float d = (HandleUtility.WorldToGUIPoint(toWorld.MultiplyPoint3x4(_pickPositions[i])) - e.mousePosition).sqrMagnitude;
+                if (d < best)
+                {
+                    best = d;
+                    nearest = i;
+                }
+            }
+            if (nearest < 0) return;
+            Undo.RecordObject(cloth, "Toggle Drape pin");
+            if (cloth.PinMode != DrapePinMode.VertexList)
+            {
+                cloth.SetPinnedVertices(CurrentPins(cloth));
+                cloth.PinMode = DrapePinMode.VertexList;
+            }
+            cloth.TogglePinnedVertex(nearest);
+            EditorUtility.SetDirty(cloth);
+            e.Use();
+        }
+
+        private static bool IsPinned(DrapeCloth cloth, int vertex)
+        {
+            if (cloth.PinMode == DrapePinMode.VertexList)
+            {
+                for (int k = 0; k < cloth.PinnedVertices.Count; ++k)
+                    if (cloth.PinnedVertices[k] == vertex) return true;
+                return false;
+            }
+            System.ReadOnlySpan<uint> pins = cloth.ActivePins;
+            for (int k = 0; k < pins.Length; ++k)
+                if (pins[k] == (uint)vertex) return true;
+            return false;
+        }
+
+        private static System.Collections.Generic.List<int> CurrentPins(DrapeCloth cloth)
+        {
+            var list = new System.Collections.Generic.List<int>();
+            System.ReadOnlySpan<uint> pins = cloth.ActivePins;
+            for (int k = 0; k < pins.Length; ++k) list.Add((int)pins[k]);
+            return list;
+        }
+
+        /// <summary>Which backend runs (or would run here) and why not the GPU; empty for an explicit CPU choice.</summary>
+        private static string BackendExplanation(DrapeCloth cloth)
+        {
+            if (cloth.Backend == DrapeBackendChoice.Cpu || cloth.Backend == DrapeBackendChoice.CpuThreaded) return "";
+            if (Application.isPlaying && cloth.NativeCloth != null)
+                return cloth.BackendReason.Length > 0 ? cloth.BackendReason : "Running on the GPU (OpenGL ES 3).";
+            string problem = DrapeCloth.ExplainGpu(cloth.SimulationSpace, cloth.SelfCollision, SystemInfo.graphicsDeviceType, true);
+            return problem == null
+                ? "Backend " + cloth.Backend + ": the GPU (OpenGL ES 3) will run this cloth here."
+                : "Backend " + cloth.Backend + ": in this editor the CPU runs the cloth: " + problem +
+                  " On a device whose active graphics API is OpenGL ES 3 the GPU runs it.";
         }
 
         /// <summary>Problems with the current settings, in words (empty when none).</summary>
@@ -56,9 +216,6 @@ namespace Drape.Editing
                     list.Add("Mass-spring needs about " + needed + " substeps per step here (chosen automatically); " +
                              "XPBD gives the same stiffness at a fraction of the cost.");
             }
-            if (cloth.Model == Model.Pbd &&
-                (cloth.StructuralStiffness > 1f || cloth.ShearStiffness > 1f || cloth.BendStiffness > 1f))
-                list.Add("PBD stiffness is a fraction per iteration in [0, 1]; values above 1 are refused by the native library.");
             if (cloth.Backend == DrapeBackendChoice.Gpu && cloth.SimulationSpace == DrapeSimulationSpace.World)
                 list.Add("The GPU backend simulates in Local space only; with World space the cloth runs on the CPU.");
             else if (cloth.Backend == DrapeBackendChoice.Gpu && SystemInfo.graphicsDeviceType != GraphicsDeviceType.OpenGLES3)

@@ -66,7 +66,7 @@ namespace Drape
                     Truncated = true;
                     break;
                 }
-                uint id = unchecked((uint)c.GetInstanceID());
+                uint id = StableId(c);
                 if (Contains(n, id)) continue;
                 Transform t = c.transform;
                 Vector3 scale = t.lossyScale;
@@ -139,7 +139,7 @@ namespace Drape
                     Truncated = true;
                     break;
                 }
-                uint id = unchecked((uint)t.GetInstanceID());
+                uint id = StableId(t);
                 if (Contains(n, id)) continue;
                 _records[n++] = new Drape.Core.ColliderDesc
                 {
@@ -153,6 +153,18 @@ namespace Drape
                 };
             }
             Count = n;
+        }
+
+        /// <summary>A per-object id, unique among live objects. Unity 6000.4 deprecates GetInstanceID
+        /// (an error from 6000.5); its EntityId keeps the object's index in the low 32 bits
+        /// (UnityCsReference 6000.4-6000.7, Runtime/Export/Scripting/UnityEngineObject.bindings.cs).</summary>
+        internal static uint StableId(UnityEngine.Object o)
+        {
+#if UNITY_6000_4_OR_NEWER
+            return unchecked((uint)EntityId.ToULong(o.GetEntityId()));
+#else
+            return unchecked((uint)o.GetInstanceID());
+#endif
         }
 
         private bool Contains(int n, uint id)

@@ -27,7 +27,9 @@ namespace Drape
     /// OpenGL convention: Camera.projectionMatrix) and viewport to the native side. The drag applies
     /// over the cloth's next step. No allocation per frame.</summary>
     [RequireComponent(typeof(DrapeCloth))]
+    [DisallowMultipleComponent]
     [AddComponentMenu("Drape/Drape Touch Drag")]
+    [HelpURL(DrapeDocs.Manual + "#drapetouchdrag")]
     public sealed class DrapeTouchDrag : MonoBehaviour
     {
         [Tooltip("Camera the touches are seen through; Camera.main when empty.")]
@@ -44,6 +46,17 @@ namespace Drape
 
         [Tooltip("Grab: how far from the finger (px) a vertex may be picked.")]
         [Range(1f, 200f)] public float PickRadius = 40f;
+
+        [Tooltip("Treat the pixel values above as pixels of a 96 dpi screen and scale them by Screen.dpi, so the " +
+                 "finger's reach is the same size in millimetres on every device (56 px at 96 dpi is about 15 mm).")]
+        public bool ScaleWithScreenDensity = true;
+
+        /// <summary>The screen density the pixel settings are given for (a desktop monitor's).</summary>
+        public const float ReferenceDpi = 96f;
+
+        /// <summary>Factor from reference pixels to this screen's pixels: dpi / 96; 1 where Unity does not
+        /// know the density (Screen.dpi is 0).</summary>
+        public static float DensityScale(float dpi) => dpi > 0f && !float.IsInfinity(dpi) ? dpi / ReferenceDpi : 1f;
 
         private const uint GrabId = 0;
 
@@ -86,13 +99,14 @@ namespace Drape
                 Projection = DrapeConvert.ToDrape(cam.projectionMatrix), // OpenGL convention, as drape.h wants
                 Viewport = new Float2(rect.width, rect.height),
             };
+            float scale = ScaleWithScreenDensity ? DensityScale(Screen.dpi) : 1f;
             try
             {
                 if (Mode == DrapeTouchMode.Grab && _cloth.ActiveBackend != Drape.Core.Backend.Gles)
                 {
                     if (!_wasActive)
                     {
-                        HeldVertex = cloth.Grab(view, GrabId, new Float2(point.x, point.y), PickRadius);
+                        HeldVertex = cloth.Grab(view, GrabId, new Float2(point.x, point.y), PickRadius * scale);
                         _holding = HeldVertex != NativeCloth.NoVertex;
                     }
                     else if (_holding && point != _lastPoint)
@@ -107,7 +121,7 @@ namespace Drape
                         Position = new Float2(_lastPoint.x, _lastPoint.y), // where the finger was
                         Motion = new Float2(point.x - _lastPoint.x, point.y - _lastPoint.y),
                         Amplitude = Amplitude,
-                        Sigma = Sigma,
+                        Sigma = Sigma * scale * scale, // a variance: px^2
                     };
                     cloth.Drag(view, _touches);
                 }

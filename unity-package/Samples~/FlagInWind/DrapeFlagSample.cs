@@ -35,7 +35,7 @@ namespace Drape.Samples.Flag
             _flag.Rows = 25;
             _flag.Size = new Vector2(2f, 1.25f);
             _flag.PinMode = DrapePinMode.VertexList;
-            for (int r = 0; r < _flag.Rows; ++r) _flag.PinnedVertices.Add(r * _flag.Columns); // column 0: along the pole
+            for (int r = 0; r < _flag.Rows; ++r) _flag.AddPinnedVertex(r * _flag.Columns); // column 0: along the pole
             _flag.AirDrag = 1.5f;        // a flag is light and catches the wind
             _flag.TotalMass = 0.25f;
             _flag.SleepThreshold = 0f;   // never sleeps: the wind keeps it moving

@@ -18,7 +18,7 @@ namespace Drape.Samples.TouchDrag
             }
             cam.transform.position = position;
             cam.transform.LookAt(target);
-            if (Object.FindObjectOfType<Light>() == null)
+            if (Object.FindAnyObjectByType<Light>() == null)
             {
                 var sun = new GameObject("Sun").AddComponent<Light>();
                 sun.type = LightType.Directional;
