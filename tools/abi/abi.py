@@ -256,11 +256,11 @@ STRUCTS = [
                      "substeps a step of dt uses with these parameters (params.substeps, or the automatic choice, "
                      "capped at DRAPE_MAX_SUBSTEPS)"),
                field("stable_substeps", "u32",
-                     "fewest substeps that keep MASS_SPRING within its explicit stability bound h * omega_max < 2 "
+                     "fewest substeps that keep MASS_SPRING within its explicit stability bound h*omega_max < 2 "
                      "(with the library's safety factor), not capped (UINT32_MAX if beyond); 1 for PBD and XPBD"),
                field("max_stable_substep", "f32",
-                     "MASS_SPRING: largest stable substep h (the tightest particle); 0 for PBD and XPBD (no explicit "
-                     "bound)", unit="s"),
+                     "MASS_SPRING: largest stable substep h (the tightest particle); 0 when nothing bounds it (PBD, "
+                     "XPBD, no active spring)", unit="s"),
                field("stable", "u32", "1 if substeps >= stable_substeps"),
            ]),
 ]

@@ -289,11 +289,11 @@ typedef struct drape_stability {
     uint32_t struct_size;
     uint32_t substeps; /**< substeps a step of dt uses with these parameters (params.substeps, or the
                             automatic choice, capped at DRAPE_MAX_SUBSTEPS) */
-    uint32_t stable_substeps; /**< fewest substeps that keep MASS_SPRING within its explicit stability bound h
-                                   * omega_max < 2 (with the library's safety factor), not capped (UINT32_MAX
+    uint32_t stable_substeps; /**< fewest substeps that keep MASS_SPRING within its explicit stability bound
+                                   h*omega_max < 2 (with the library's safety factor), not capped (UINT32_MAX
                                    if beyond); 1 for PBD and XPBD */
-    float max_stable_substep; /**< s, MASS_SPRING: largest stable substep h (the tightest particle); 0 for PBD
-                                   and XPBD (no explicit bound) */
+    float max_stable_substep; /**< s, MASS_SPRING: largest stable substep h (the tightest particle); 0 when
+                                   nothing bounds it (PBD, XPBD, no active spring) */
     uint32_t stable; /**< 1 if substeps >= stable_substeps */
 } drape_stability;
 /* GENERATED END drape_stability */

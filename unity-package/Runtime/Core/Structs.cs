@@ -321,12 +321,12 @@ namespace Drape.Core
         /// <summary>Substeps a step of dt uses with these parameters (params.substeps, or the automatic
         /// choice, capped at DRAPE_MAX_SUBSTEPS).</summary>
         public uint Substeps;
-        /// <summary>Fewest substeps that keep MASS_SPRING within its explicit stability bound h * omega_max
+        /// <summary>Fewest substeps that keep MASS_SPRING within its explicit stability bound h*omega_max
         /// &lt; 2 (with the library's safety factor), not capped (UINT32_MAX if beyond); 1 for PBD and
         /// XPBD.</summary>
         public uint StableSubsteps;
-        /// <summary>S, MASS_SPRING: largest stable substep h (the tightest particle); 0 for PBD and XPBD (no
-        /// explicit bound).</summary>
+        /// <summary>S, MASS_SPRING: largest stable substep h (the tightest particle); 0 when nothing bounds
+        /// it (PBD, XPBD, no active spring).</summary>
         public float MaxStableSubstep;
         /// <summary>1 if substeps &gt;= stable_substeps.</summary>
         public uint Stable;
