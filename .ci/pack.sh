@@ -7,7 +7,9 @@ cd "$(dirname "$0")/.."
 bash .ci/build.sh release
 # Windows x86_64 drape.dll, cross-compiled with mingw-w64 (GLES off; see plugin-native/cmake/x86_64-w64-mingw32.cmake).
 bash .ci/build.sh windows-x64
-# Android arm64-v8a needs the NDK (not installable here): built only where ANDROID_NDK_HOME is set.
+# Android and iOS players compile Plugins/Source/Drape.cpp (the source plug-in, in the repository).
+# A prebuilt Android arm64-v8a libdrape.so needs the NDK (not installable here): built only where
+# ANDROID_NDK_HOME is set, and used by Unity only with the scripting define DRAPE_ANDROID_PREBUILT.
 if [ -n "${ANDROID_NDK_HOME:-}" ]; then bash .ci/build.sh android-arm64; fi
 
 stage=build/unity-package-stage/package
@@ -39,5 +41,7 @@ node .ci/unity-meta.mjs check "$stage" --root-version package.json
 version=$(node -p "require('./package.json').version")
 tarball=$(cd build && npm pack "./unity-package-stage/package" --silent)
 echo "drape: wrote build/$tarball (Unity: Package Manager > + > Add package from tarball...)"
-tar -tzf "build/$tarball" | grep -q "package/Plugins/Linux/x86_64/libdrape.so.meta"
+listing=$(tar -tzf "build/$tarball")
+grep -q "package/Plugins/Linux/x86_64/libdrape.so.meta" <<<"$listing"
+grep -q "package/Plugins/Source/Drape.cpp.meta" <<<"$listing"
 test "$tarball" = "com.drape.cloth-$version.tgz"

@@ -11,5 +11,7 @@ bash tests/bench/run.sh --quick --out build/release/bench-quick
 # Hardening (issue 7): native suite under ASan+UBSan+LSan, libFuzzer on the C ABI (60 s under CI),
 # threading tests under TSan, native suite on arm64 under qemu-user. Parts: .ci/hardening.sh asan|fuzz|tsan|arm64
 bash .ci/hardening.sh
-# Windows: the native suite cross-built with mingw-w64, run under Wine.
+# Unity source plug-in (Android/iOS players, no NDK): up to date, compiles for iOS, builds as IL2CPP
+# would for arm64 and passes the arm64 suite under qemu. Windows: native suite under Wine.
+bash .ci/unity-source.sh check arm64
 bash .ci/windows-tests.sh

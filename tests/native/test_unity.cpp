@@ -188,3 +188,54 @@ TEST(Unity, PluginLifecycleOnARenderThread) {
     w.reset();
     render.run([&] { gl.destroy(); });
 }
+
+// Statically linked plug-in (Unity source plug-in, IL2CPP players): UnityPluginLoad is never
+// called, so no device events arrive. The first render event on a thread with a GL ES 3 context
+// makes GLES available, and GLES cloths then step on that thread's events.
+TEST(Unity, RenderEventWithoutPluginLoadEnablesGles) {
+    RenderThread render;
+    HeadlessGles gl;
+    const std::string why = render.run([&] { return gl.create(); });
+    if (!why.empty() || !render.run([&] { return gl.make_current(); })) DRAPE_GLES_UNAVAILABLE(why);
+
+    void* callback = nullptr;
+    int32_t event_id = -1;
+    ASSERT_DRAPE_OK(drape_unity_render_event(&callback, &event_id));
+    auto fire = [&](int32_t id) { render.run([&] { reinterpret_cast<void (*)(int)>(callback)(id); }); };
+    uint32_t available = 1;
+    ASSERT_DRAPE_OK(drape_backend_available(DRAPE_BACKEND_GLES, &available));
+    EXPECT_EQ(available, 0u);  // main thread: no context, no device yet
+    fire(event_id + 7);        // another plug-in's event: ignored
+    ASSERT_DRAPE_OK(drape_backend_available(DRAPE_BACKEND_GLES, &available));
+    EXPECT_EQ(available, 0u);
+    fire(event_id);
+    ASSERT_DRAPE_OK(drape_backend_available(DRAPE_BACKEND_GLES, &available));
+    EXPECT_EQ(available, 1u);
+
+    WorldPtr w = make_world(1);
+    drape_grid_desc g = grid_desc(8, 6, 1.0f, 1.0f);
+    g.origin[1] = 1.0f;
+    drape_cloth* cpu = make_grid(w.get(), g, 0.5f, DRAPE_BACKEND_CPU);
+    drape_cloth* gpu = make_grid(w.get(), g, 0.5f, DRAPE_BACKEND_GLES);
+    ASSERT_NE(gpu, nullptr);
+    for (int frame = 0; frame < 5; ++frame) {
+        ASSERT_DRAPE_OK(drape_cloth_step(cpu, 1.0f / 60));
+        ASSERT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 60));
+        fire(event_id);
+    }
+    ASSERT_DRAPE_OK(drape_cloth_readback(gpu));
+    fire(event_id);
+    const std::vector<float> expect = positions(cpu);
+    const std::vector<float> got = positions(gpu);
+    float err = 0;
+    for (size_t k = 0; k < expect.size(); ++k) err = std::max(err, std::fabs(expect[k] - got[k]));
+    EXPECT_LT(expect[1], 1.0f);  // it fell
+    EXPECT_LE(err, 1e-5f * 5 * std::sqrt(2.0f));
+    ASSERT_DRAPE_OK(drape_cloth_destroy(gpu));
+    fire(event_id);  // GL objects go on the render thread
+    w.reset();
+    UnityPluginUnload();  // what remains of the device state (no Unity interfaces here)
+    ASSERT_DRAPE_OK(drape_backend_available(DRAPE_BACKEND_GLES, &available));
+    EXPECT_EQ(available, 0u);
+    render.run([&] { gl.destroy(); });
+}

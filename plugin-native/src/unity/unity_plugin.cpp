@@ -42,7 +42,13 @@ void DRAPE_UNITY_API on_device_event(int type) {
 void DRAPE_UNITY_API on_render_event(int event_id) {
 #ifdef DRAPE_WITH_GLES
     // Guard against events from other plug-ins and against a missing or lost device.
-    if (event_id != g_event_id.load() || !drape::gles::render_thread_device_ready()) return;
+    if (event_id != g_event_id.load()) return;
+    // Statically linked (the Unity source plug-in in IL2CPP players): Unity calls no
+    // UnityPluginLoad there, so no device events come; the render event itself runs on the render
+    // thread, where a current GL ES 3 context makes the device usable.
+    if (!g_graphics && !drape::gles::render_thread_device_ready() && drape::gles::context_current())
+        drape::gles::set_render_thread_device(true);
+    if (!drape::gles::render_thread_device_ready()) return;
     drape::gles::render_thread_tick();
 #else
     (void)event_id;
