@@ -56,7 +56,11 @@ ENUMS = [
     enum("drape_model", "Model", "", cs_prefix="DRAPE_MODEL_", values=[
         ("DRAPE_MODEL_MASS_SPRING", 0, "Hooke springs + damping, Verlet (paper eq. 1-3)"),
         ("DRAPE_MODEL_PBD", 1, "stretch constraints, stiffness in [0,1] (paper eq. 4-8)"),
-        ("DRAPE_MODEL_XPBD", 2, "compliance = 1/stiffness in physical units; the default"),
+        ("DRAPE_MODEL_XPBD", 2, "compliance = 1/stiffness in physical units, one Jacobi pass per iteration; the "
+                                "default. Rests softer than its springs with few iterations"),
+        ("DRAPE_MODEL_IMPLICIT", 3, "implicit Euler on the same springs (N/m): exact force residual, prefactored "
+                                    "sparse Cholesky preconditioner; rests exactly at the springs' equilibrium "
+                                    "whatever the budget. CPU backends only"),
     ]),
     enum("drape_group", "Group", "Spring / constraint groups of the 12-neighbour stencil (grid) or of a mesh.",
          cs_prefix="DRAPE_GROUP_", values=[
@@ -110,9 +114,9 @@ STRUCTS = [
            fields=[
                field("model", "u32", "drape_model", enum="drape_model", default="DRAPE_MODEL_XPBD"),
                field("stiffness", "f32[3]",
-                     "per drape_group. MASS_SPRING, XPBD: N/m per spring (0 = group off); PBD: fraction in [0,1] "
+                     "per drape_group. MASS_SPRING, XPBD, IMPLICIT: N/m per spring (0 = group off); PBD: fraction in [0,1] "
                      "per iteration", cs_type="GroupValues", default=[2000.0, 1000.0, 200.0], range=(0, 1e9)),
-               field("damping", "f32", "along each spring (eq. 2; XPBD: constraint damping)", unit="N*s/m",
+               field("damping", "f32", "along each spring (eq. 2; XPBD: constraint damping; IMPLICIT: implicit dashpot)", unit="N*s/m",
                      default=0.05, range=(0, 1e6)),
                field("gravity", "f32[3]", "", unit="m/s^2", default=[0.0, -9.81, 0.0], range=(0, 1e4), norm=True),
                field("wind", "f32[3]", "air velocity", unit="m/s", default=[0.0, 0.0, 0.0], range=(0, 1e4),
@@ -120,10 +124,10 @@ STRUCTS = [
                field("air_drag", "f32", "a += air_drag*(wind - v)", unit="1/s", default=0.1, range=(0, 1000)),
                field("substeps", "u32",
                      "per step; 0 = automatic (MASS_SPRING: from the stability bound, see drape_estimate_stability; "
-                     "PBD, XPBD: 16 \"small steps\"). Automatic or given, at most DRAPE_MAX_SUBSTEPS",
+                     "PBD, XPBD: 16 \"small steps\"; IMPLICIT: 4). Automatic or given, at most DRAPE_MAX_SUBSTEPS",
                      default=0, range=(0, "DRAPE_MAX_SUBSTEPS")),
-               field("iterations", "u32", "solver iterations per substep (PBD, XPBD)", default=1,
-                     range=(1, "DRAPE_MAX_ITERATIONS")),
+               field("iterations", "u32", "solver iterations per substep (PBD, XPBD, IMPLICIT); 0 = automatic "
+                     "(IMPLICIT: 4, PBD and XPBD: 1)", default=0, range=(0, "DRAPE_MAX_ITERATIONS")),
                field("max_stretch", "f32",
                      "tethers (long-range attachments, Kim et al. 2012): every particle stays within "
                      "(1 + max_stretch) x its rest distance along the cloth to the nearest pinned particle. "
@@ -161,7 +165,7 @@ STRUCTS = [
         field("rms_strain", "f32", ""),
         field("kinetic_energy", "f32", "", unit="J"),
         field("potential_energy", "f32", "gravity relative to y = 0", unit="J"),
-        field("elastic_energy", "f32", "springs (MASS_SPRING, XPBD); 0 for PBD", unit="J"),
+        field("elastic_energy", "f32", "springs (MASS_SPRING, XPBD, IMPLICIT); 0 for PBD", unit="J"),
         field("non_finite", "u32", "1 if the last step produced NaN/Inf (and was rolled back)"),
         field("unstable_steps", "u32", "steps rolled back since creation"),
         field("sleeping", "u32", "1 if the cloth is asleep (drape_sleep_desc): steps do no work", rev=1),

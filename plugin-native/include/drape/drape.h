@@ -236,7 +236,11 @@ DRAPE_API drape_status drape_cloth_wake(drape_cloth* cloth);
 typedef enum drape_model {
     DRAPE_MODEL_MASS_SPRING = 0, /**< Hooke springs + damping, Verlet (paper eq. 1-3) */
     DRAPE_MODEL_PBD = 1, /**< stretch constraints, stiffness in [0,1] (paper eq. 4-8) */
-    DRAPE_MODEL_XPBD = 2 /**< compliance = 1/stiffness in physical units; the default */
+    DRAPE_MODEL_XPBD = 2, /**< compliance = 1/stiffness in physical units, one Jacobi pass per iteration; the
+                               default. Rests softer than its springs with few iterations */
+    DRAPE_MODEL_IMPLICIT = 3 /**< implicit Euler on the same springs (N/m): exact force residual, prefactored
+                                  sparse Cholesky preconditioner; rests exactly at the springs' equilibrium
+                                  whatever the budget. CPU backends only */
 } drape_model;
 /* GENERATED END drape_model */
 
@@ -255,18 +259,18 @@ typedef enum drape_group {
 typedef struct drape_params {
     uint32_t struct_size;
     uint32_t model; /**< drape_model. Default XPBD */
-    float stiffness[3]; /**< per drape_group. MASS_SPRING, XPBD: N/m per spring (0 = group off); PBD: fraction
-                             in [0,1] per iteration. Range [0, 1e9]. Default 2000, 1000, 200 */
-    float damping; /**< N*s/m, along each spring (eq. 2; XPBD: constraint damping). Range [0, 1e6]. Default
-                        0.05 */
+    float stiffness[3]; /**< per drape_group. MASS_SPRING, XPBD, IMPLICIT: N/m per spring (0 = group off);
+                             PBD: fraction in [0,1] per iteration. Range [0, 1e9]. Default 2000, 1000, 200 */
+    float damping; /**< N*s/m, along each spring (eq. 2; XPBD: constraint damping; IMPLICIT: implicit
+                        dashpot). Range [0, 1e6]. Default 0.05 */
     float gravity[3]; /**< m/s^2. Length <= 10000. Default (0, -9.81, 0) */
     float wind[3]; /**< m/s, air velocity. Length <= 10000. Default (0, 0, 0) */
     float air_drag; /**< 1/s, a += air_drag*(wind - v). Range [0, 1000]. Default 0.1 */
     uint32_t substeps; /**< per step; 0 = automatic (MASS_SPRING: from the stability bound, see
-                            drape_estimate_stability; PBD, XPBD: 16 "small steps"). Automatic or given, at
-                            most DRAPE_MAX_SUBSTEPS. Range [0, DRAPE_MAX_SUBSTEPS]. Default 0 */
-    uint32_t iterations; /**< solver iterations per substep (PBD, XPBD). Range [1, DRAPE_MAX_ITERATIONS].
-                              Default 1 */
+                            drape_estimate_stability; PBD, XPBD: 16 "small steps"; IMPLICIT: 4). Automatic or
+                            given, at most DRAPE_MAX_SUBSTEPS. Range [0, DRAPE_MAX_SUBSTEPS]. Default 0 */
+    uint32_t iterations; /**< solver iterations per substep (PBD, XPBD, IMPLICIT); 0 = automatic (IMPLICIT: 4,
+                              PBD and XPBD: 1). Range [0, DRAPE_MAX_ITERATIONS]. Default 0 */
     float max_stretch; /**< tethers (long-range attachments, Kim et al. 2012): every particle stays within (1
                             + max_stretch) x its rest distance along the cloth to the nearest pinned particle.
                             Fraction; 0 = off. Range [0, 100]. Default 0.1 */
@@ -354,7 +358,7 @@ typedef struct drape_stats {
     float rms_strain;
     float kinetic_energy; /**< J */
     float potential_energy; /**< J, gravity relative to y = 0 */
-    float elastic_energy; /**< J, springs (MASS_SPRING, XPBD); 0 for PBD */
+    float elastic_energy; /**< J, springs (MASS_SPRING, XPBD, IMPLICIT); 0 for PBD */
     uint32_t non_finite; /**< 1 if the last step produced NaN/Inf (and was rolled back) */
     uint32_t unstable_steps; /**< steps rolled back since creation */
     uint32_t sleeping; /**< 1 if the cloth is asleep (drape_sleep_desc): steps do no work. Added in struct

@@ -550,6 +550,10 @@ drape_status drape_cloth_set_params(drape_cloth* cloth, const drape_params* para
     drape_status status;
     std::string problem = validate_params(*params, &status);
     if (status != DRAPE_OK) return fail(status, problem);
+    DRAPE_REQUIRE(params->model != DRAPE_MODEL_IMPLICIT || as_cloth(cloth)->backend() != DRAPE_BACKEND_GLES,
+                  DRAPE_ERROR_BACKEND_UNAVAILABLE,
+                  "model IMPLICIT runs on the CPU backends only (its sparse Cholesky solve has no GLES form yet); "
+                  "GLES runs MASS_SPRING, PBD and XPBD");
     const drape_params p = *params;
     return guarded([&] { return apply_edit(as_cloth(cloth), Access::NoState, [p](Cloth& c) { c.set_params(p); }); });
 }

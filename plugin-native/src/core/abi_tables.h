@@ -81,7 +81,6 @@ struct Layout<drape_params> {
         s.damping = 0.05f;
         s.gravity[1] = -9.81f;
         s.air_drag = 0.1f;
-        s.iterations = 1u;
         s.max_stretch = 0.1f;
         return s;
     }
@@ -91,7 +90,7 @@ struct Layout<drape_params> {
             *message = std::move(text);
             return status;
         };
-        if (s.model > 2)
+        if (s.model > 3)
             return fail(DRAPE_ERROR_INVALID_ENUM, "model " + std::to_string(s.model) + " is not a drape_model");
         if (!std::isfinite(s.stiffness[0]) || !std::isfinite(s.stiffness[1]) || !std::isfinite(s.stiffness[2]))
             return fail(DRAPE_ERROR_NOT_FINITE, "stiffness is NaN or infinite");
@@ -117,8 +116,8 @@ struct Layout<drape_params> {
             return fail(DRAPE_ERROR_INVALID_ARGUMENT, "air_drag must be in [0, 1000] 1/s");
         if (!(s.substeps <= DRAPE_MAX_SUBSTEPS))
             return fail(DRAPE_ERROR_INVALID_ARGUMENT, "substeps must be in [0, " + std::to_string(DRAPE_MAX_SUBSTEPS) + "]");
-        if (!(s.iterations >= 1u && s.iterations <= DRAPE_MAX_ITERATIONS))
-            return fail(DRAPE_ERROR_INVALID_ARGUMENT, "iterations must be in [1, " + std::to_string(DRAPE_MAX_ITERATIONS) + "]");
+        if (!(s.iterations <= DRAPE_MAX_ITERATIONS))
+            return fail(DRAPE_ERROR_INVALID_ARGUMENT, "iterations must be in [0, " + std::to_string(DRAPE_MAX_ITERATIONS) + "]");
         if (!(s.max_stretch >= 0.0f && s.max_stretch <= 100.0f))
             return fail(DRAPE_ERROR_INVALID_ARGUMENT, "max_stretch must be in [0, 100]");
         (void)fail;

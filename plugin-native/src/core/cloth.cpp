@@ -24,6 +24,7 @@ Cloth::Cloth(World& world, drape_backend backend, Topology topology)
     for (auto& b : buffers_) b.resize(n);
     for (uint32_t i = 0; i < n; ++i) buffers_[cur_][i] = Particle(topo_.rest_position[i], 0.0f);
     lambda_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
+    target_.resize(n);
     slot_coef_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
     const NeighbourTable& nb = topo_.nbr;
     col_index_.resize(nb.index.size());
@@ -76,6 +77,7 @@ void Cloth::refresh_derived() {
         h_max = std::min(h_max, mass_spring_max_substep(buffers_[cur_][i].w, ksum, params_.damping, active));
     }
     ms_h_max_ = h_max;
+    implicit_.h = 0;  // masses, pins or stiffness changed: refactor before the next IMPLICIT substep
     if (kinematic_ != tethered_kinematic_) rebuild_tethers();
     for (uint32_t i = 0; i < n; ++i)
         tether_length_[i] = tether_rest_[i] < 0 ? -1.0f : tether_rest_[i] * (1.0f + params_.max_stretch);
@@ -183,6 +185,91 @@ void Cloth::set_velocities(const float* xyz) {
 
 uint32_t Cloth::substeps_for(float dt) const { return drape::substeps_for(params_, ms_h_max_, dt); }
 
+uint32_t Cloth::iterations_for() const {
+    if (params_.iterations > 0) return params_.iterations;
+    return params_.model == DRAPE_MODEL_IMPLICIT ? kAutoIterationsImplicit : 1;
+}
+
+template <class KinematicAt>
+void Cloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& kinematic_at) {
+    // Target y into target_, inertia as the first iterate into spare2; then each iteration
+    // d += A^-1 r, r = kernels::implicit_residual, A = M/h^2 + sum_springs (k + kd/h) (e_i - e_j)
+    // (e_i - e_j)^T over the free particles: Projective Dynamics' constant matrix (Bouaziz et al.
+    // 2014), prefactored, as the preconditioner of the exact force residual. A bounds the spring
+    // Hessian (k n n^T + k (1 - L/l)(I - n n^T) <= k I), so every iteration lowers Phi; it solves
+    // the linear part (rigid motion, stretch of a hanging cloth) in one iteration, which local
+    // Jacobi-type sweeps need O(n) iterations for; and the fixed point is the exact equilibrium
+    // whatever A is (kernels::implicit_residual), so A is refactored only when it drifts far.
+    Particle* cur = buffers_[cur_].data();
+    Particle* disp = buffers_[disp_].data();
+    Particle* target = target_.data();
+    Particle* iterate = buffers_[spare2_].data();
+    Particle* residual = buffers_[spare_].data();
+    for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_predict(c, cur, disp, target, iterate, b, e); });
+    for (uint32_t k : kinematic_) target[k] = iterate[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
+    if (implicit_.h != c.h && !(implicit_.h > 0 && std::fabs(implicit_.h / c.h - 1.0f) < kImplicitRefactor))
+        factor_implicit(c.h);
+    const uint32_t iterations = iterations_for();
+    const uint32_t free = uint32_t(implicit_.free.size());
+    for (uint32_t it = 0; it < iterations; ++it) {
+        for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_residual(c, iterate, target, cur, residual, b, e); });
+        for (uint32_t f = 0; f < free; ++f)
+            for (int a = 0; a < 3; ++a) implicit_.rhs(implicit_.perm[f], a) = residual[implicit_.free[f]][a];
+        implicit_.solver.matrixL().solveInPlace(implicit_.rhs);
+        implicit_.solver.matrixU().solveInPlace(implicit_.rhs);
+        for (uint32_t f = 0; f < free; ++f) {
+            Particle& d = iterate[implicit_.free[f]];
+            const uint32_t row = implicit_.perm[f];
+            d += Particle(float(implicit_.rhs(row, 0)), float(implicit_.rhs(row, 1)), float(implicit_.rhs(row, 2)), 0.0f);
+        }
+    }
+    // Commit: positions start + d into the old displacement buffer, d becomes the state.
+    for_particles([&](uint32_t b, uint32_t e) {
+        for (uint32_t i = b; i < e; ++i) disp[i] = Particle(glm::vec3(cur[i]) + glm::vec3(iterate[i]), cur[i].w);
+    });
+    const int old_cur = cur_;
+    cur_ = disp_;
+    disp_ = spare2_;
+    spare2_ = old_cur;
+}
+
+void Cloth::factor_implicit(float h) {
+    // Rows of the free particles; kinematic ones enter only through the residual.
+    const uint32_t n = topo_.particle_count;
+    const NeighbourTable& nb = topo_.nbr;
+    std::vector<int> row(n, -1);
+    implicit_.free.clear();
+    for (uint32_t i = 0; i < n; ++i)
+        if (buffers_[cur_][i].w != 0.0f) {
+            row[i] = int(implicit_.free.size());
+            implicit_.free.push_back(i);
+        }
+    const double kd_h = double(params_.damping) / h;
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(implicit_.free.size() * (nb.slots + 1));
+    for (uint32_t i : implicit_.free) {
+        double diag = 1.0 / (double(buffers_[cur_][i].w) * h * h);
+        for (uint32_t s = 0; s < nb.count[i]; ++s) {
+            const uint8_t g = nb.group[size_t(i) * nb.slots + s];
+            if (g >= DRAPE_GROUP_COUNT || !(params_.stiffness[g] > 0)) continue;
+            const double k = params_.stiffness[g] + kd_h;
+            diag += k;
+            const int j = row[nb.index[size_t(i) * nb.slots + s]];
+            if (j >= 0) entries.emplace_back(row[i], j, -k);
+        }
+        entries.emplace_back(row[i], row[i], diag);
+    }
+    const int m = int(implicit_.free.size());
+    Eigen::SparseMatrix<double> a(m, m);
+    a.setFromTriplets(entries.begin(), entries.end());
+    implicit_.solver.compute(a);
+    // rhs lives in the factor's (permuted) row order: free particle f is row perm[f].
+    implicit_.perm.resize(m);
+    for (int f = 0; f < m; ++f) implicit_.perm[f] = uint32_t(implicit_.solver.permutationP().indices()[f]);
+    implicit_.rhs.resize(m, 3);
+    implicit_.h = h;
+}
+
 template <class Fn>
 void Cloth::for_particles(Fn&& fn) {
     if (backend_ == DRAPE_BACKEND_CPU_THREADED)
@@ -239,7 +326,8 @@ Result Cloth::step(float dt) {
     c.col_index = col_index_.data();
     c.col_rest = col_rest_.data();
     c.col_group = col_group_.data();
-    c.lambda = model == DRAPE_MODEL_XPBD && params_.iterations > 1 ? lambda_.data() : nullptr;
+    const uint32_t iterations = iterations_for();
+    c.lambda = model == DRAPE_MODEL_XPBD && iterations > 1 ? lambda_.data() : nullptr;
     for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) {
         const float k = params_.stiffness[g];
         c.groups.stiffness[g] = k;
@@ -274,7 +362,9 @@ Result Cloth::step(float dt) {
         auto kinematic_at = [&](uint32_t k) {
             return kinematic_start_[k] + (kinematic_target_[k] - kinematic_start_[k]) * along;
         };
-        if (model == DRAPE_MODEL_MASS_SPRING) {
+        if (model == DRAPE_MODEL_IMPLICIT) {
+            implicit_substep(c, kinematic_at);
+        } else if (model == DRAPE_MODEL_MASS_SPRING) {
             for_particles([&](uint32_t b, uint32_t e) { kernels::mass_spring_step(c, cur, disp, spare, spare2, b, e); });
             for (uint32_t k : kinematic_) {
                 spare[k] = Particle(kinematic_at(k), 0.0f);
@@ -293,8 +383,8 @@ Result Cloth::step(float dt) {
             int in = spare_, out = spare2_;
             const bool xpbd = model == DRAPE_MODEL_XPBD;
             const float* coef = slot_coef_.data();
-            for (uint32_t it = 0; it < params_.iterations; ++it) {
-                const bool last = it + 1 == params_.iterations;
+            for (uint32_t it = 0; it < iterations; ++it) {
+                const bool last = it + 1 == iterations;
                 Particle* src = buffers_[in].data();
                 Particle* dst = buffers_[out].data();
                 for_particles([&](uint32_t b, uint32_t e) {
@@ -368,7 +458,7 @@ Result Cloth::step(float dt) {
     }
 
     stats_.substeps = substeps;
-    stats_.iterations = model == DRAPE_MODEL_MASS_SPRING ? 1 : params_.iterations;
+    stats_.iterations = model == DRAPE_MODEL_MASS_SPRING ? 1 : iterations;
     stats_.step_ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - t0).count();
     const bool runaway = !(total.max_strain_all <= kRunawayStrain);
     stats_.non_finite = total.finite ? 0 : 1;

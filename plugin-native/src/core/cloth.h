@@ -6,10 +6,13 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <glm/ext/vector_double3.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "backend/cpu/kernels.h"
 #include "backend/cpu/thread_pool.h"
 #include "core/interaction.h"  // issue 5: colliders, drag, owner, sleep
 #include "core/params.h"
@@ -81,6 +84,8 @@ public:
 
     /// Substeps a step of dt uses with the current parameters.
     uint32_t substeps_for(float dt) const;
+    /// Iterations per substep with the current parameters (0 in drape_params = automatic).
+    uint32_t iterations_for() const;
 
     /// The point the cloth's coordinates are measured from, in the caller's space, m. Every
     /// position held by the cloth is relative to it (float precision does not depend on where the
@@ -117,6 +122,19 @@ protected:
     float h_prev_ = 1.0f;   ///< previous substep; velocity = disp / h_prev
     bool fresh_ = true;     ///< next substep is the first since positions/velocities were set
     std::vector<float> lambda_;
+    // IMPLICIT model (Cloth::implicit_substep): the substep's inertial target, and the prefactored
+    // matrix over the free particles with the substep it was built for (0: rebuild).
+    std::vector<Particle> target_;
+    struct ImplicitSolve {
+        float h = 0;
+        std::vector<uint32_t> free;   ///< particle of each free row, in particle order
+        std::vector<uint32_t> perm;   ///< factor row of free particle f
+        Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> solver;  // AMD ordering
+        Eigen::Matrix<double, Eigen::Dynamic, 3> rhs;
+    } implicit_;
+    template <class KinematicAt>
+    void implicit_substep(kernels::SubstepContext& c, const KinematicAt& kinematic_at);
+    void factor_implicit(float h);
     std::vector<float> slot_coef_;  ///< per-spring Jacobi factor of the current step (kernels.h)
     // Column-major copy of the neighbour table for the constraint iteration (kernels.h).
     std::vector<uint32_t> col_index_;

@@ -33,6 +33,7 @@ float mass_spring_max_substep(float inverse_mass, float stiffness_sum, float dam
 
 uint32_t substeps_for(const drape_params& p, float h_max, float dt) {
     if (p.substeps > 0) return p.substeps;
+    if (p.model == DRAPE_MODEL_IMPLICIT) return kAutoSubstepsImplicit;
     if (p.model != DRAPE_MODEL_MASS_SPRING) return kAutoSubstepsPositionBased;
     const float s = std::ceil(dt / h_max);
     return s < 1 ? 1u : s > float(kMaxSubsteps) ? kMaxSubsteps : uint32_t(s);

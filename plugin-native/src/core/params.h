@@ -20,6 +20,12 @@ constexpr uint32_t kAutoSubstepsPositionBased = 16;
 /// Upper bound on substeps per step, automatic or given (drape.h).
 constexpr uint32_t kMaxSubsteps = DRAPE_MAX_SUBSTEPS;
 constexpr uint32_t kMaxIterations = DRAPE_MAX_ITERATIONS;
+/// IMPLICIT defaults (substeps x iterations), chosen on the work-precision bench (tests/bench).
+constexpr uint32_t kAutoSubstepsImplicit = 4;
+constexpr uint32_t kAutoIterationsImplicit = 4;
+/// IMPLICIT: relative change of the substep beyond which its matrix is refactored (any matrix
+/// gives the exact rest state; a stale one only converges more slowly).
+constexpr float kImplicitRefactor = 0.25f;
 /// Fraction of the explicit stability limit used when MASS_SPRING picks substeps itself.
 constexpr float kStabilitySafety = 0.9f;
 /// Jacobi coupling weight theta (kernels.h jacobi_scale); convergent for theta > 1/2.

@@ -79,11 +79,11 @@ namespace Drape.Core
         public uint StructSize;
         /// <summary>Drape_model. Default XPBD.</summary>
         public Model Model;
-        /// <summary>Per drape_group. MASS_SPRING, XPBD: N/m per spring (0 = group off); PBD: fraction in
-        /// [0,1] per iteration. Range [0, 1e9]. Default 2000, 1000, 200.</summary>
+        /// <summary>Per drape_group. MASS_SPRING, XPBD, IMPLICIT: N/m per spring (0 = group off); PBD:
+        /// fraction in [0,1] per iteration. Range [0, 1e9]. Default 2000, 1000, 200.</summary>
         public GroupValues Stiffness;
-        /// <summary>N*s/m, along each spring (eq. 2; XPBD: constraint damping). Range [0, 1e6]. Default
-        /// 0.05.</summary>
+        /// <summary>N*s/m, along each spring (eq. 2; XPBD: constraint damping; IMPLICIT: implicit dashpot).
+        /// Range [0, 1e6]. Default 0.05.</summary>
         public float Damping;
         /// <summary>M/s^2. Length &lt;= 10000. Default (0, -9.81, 0).</summary>
         public Float3 Gravity;
@@ -92,11 +92,11 @@ namespace Drape.Core
         /// <summary>1/s, a += air_drag*(wind - v). Range [0, 1000]. Default 0.1.</summary>
         public float AirDrag;
         /// <summary>Per step; 0 = automatic (MASS_SPRING: from the stability bound, see
-        /// drape_estimate_stability; PBD, XPBD: 16 "small steps"). Automatic or given, at most
+        /// drape_estimate_stability; PBD, XPBD: 16 "small steps"; IMPLICIT: 4). Automatic or given, at most
         /// DRAPE_MAX_SUBSTEPS. Range [0, DRAPE_MAX_SUBSTEPS]. Default 0.</summary>
         public uint Substeps;
-        /// <summary>Solver iterations per substep (PBD, XPBD). Range [1, DRAPE_MAX_ITERATIONS]. Default
-        /// 1.</summary>
+        /// <summary>Solver iterations per substep (PBD, XPBD, IMPLICIT); 0 = automatic (IMPLICIT: 4, PBD and
+        /// XPBD: 1). Range [0, DRAPE_MAX_ITERATIONS]. Default 0.</summary>
         public uint Iterations;
         /// <summary>Tethers (long-range attachments, Kim et al. 2012): every particle stays within (1 +
         /// max_stretch) x its rest distance along the cloth to the nearest pinned particle. Fraction; 0 =
@@ -171,7 +171,7 @@ namespace Drape.Core
         public float KineticEnergy;
         /// <summary>J, gravity relative to y = 0.</summary>
         public float PotentialEnergy;
-        /// <summary>J, springs (MASS_SPRING, XPBD); 0 for PBD.</summary>
+        /// <summary>J, springs (MASS_SPRING, XPBD, IMPLICIT); 0 for PBD.</summary>
         public float ElasticEnergy;
         /// <summary>1 if the last step produced NaN/Inf (and was rolled back).</summary>
         public uint NonFinite;

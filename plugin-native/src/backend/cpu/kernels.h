@@ -239,6 +239,61 @@ inline void constraint_iteration(const SubstepContext& c, const float* coef, con
     }
 }
 
+/// IMPLICIT prediction: the target y = d h/h_prev + a h (h + h_prev)/2 (inertia and external
+/// forces, as predict<false>) and the first iterate d h/h_prev (inertia alone). The first iterate
+/// must not contain the external forces: at rest it is then exactly 0, and a step that stays at
+/// rest is one where the springs balance them exactly (see implicit_residual).
+inline void implicit_predict(const SubstepContext& c, const Particle* x, const Particle* d, Particle* target,
+                             Particle* first, uint32_t begin, uint32_t end) {
+    const float inv_hp = 1.0f / c.h_prev;
+    for (uint32_t i = begin; i < end; ++i) {
+        const float wi = x[i].w;
+        glm::vec3 inertia(0.0f), y(0.0f);
+        if (wi != 0.0f) {
+            inertia = glm::vec3(d[i]) * c.h_ratio;
+            y = inertia + external_accel(c, glm::vec3(d[i]) * inv_hp) * (c.h * c.accel_h);
+        }
+        target[i] = Particle(y, wi);
+        first[i] = Particle(inertia, wi);
+    }
+}
+
+/// IMPLICIT model: one substep is implicit Euler (Baraff and Witkin 1998), posed as minimising
+///   Phi(d) = sum_i |d_i - y_i|^2 / (2 w_i h^2) + sum_springs k/2 (|x_i - x_j| - L)^2
+/// (plus a dashpot kd along each spring) over the substep's displacements d, x = start + d. This
+/// kernel writes the force residual  r_i = -grad_i Phi = F_i - (d_i - y_i) / (w_i h^2)  (N; 0 for
+/// kinematic particles); Cloth::implicit_substep turns it into a step with a prefactored global
+/// solve. Any iteration of the form d += P^-1 r has grad Phi = 0 as its fixed point: at rest the
+/// first iterate is d = 0 (implicit_predict) and y = h^2 g, so a substep that stays at rest is
+/// one where the spring forces balance m g exactly, the springs' own equilibrium, whatever the
+/// iteration count (one Jacobi iteration of XPBD rests softer than its springs).
+inline void implicit_residual(const SubstepContext& c, const Particle* disp, const Particle* target,
+                              const Particle* start, Particle* residual, uint32_t begin, uint32_t end) {
+    const float kd_h = c.damping / c.h;
+    const float inv_h2 = 1.0f / (c.h * c.h);
+    for (uint32_t i = begin; i < end; ++i) {
+        const float wi = disp[i].w;
+        glm::vec3 r(0.0f);
+        if (wi != 0.0f) {
+            const glm::vec3 di(disp[i]);
+            const glm::vec3 si(start[i]);
+            const uint32_t count = c.nbr_count[i];
+            for (uint32_t s = 0; s < count; ++s) {
+                const size_t slot = size_t(s) * c.stride + i;
+                const uint8_t g = c.col_group[slot];
+                if (g >= DRAPE_GROUP_COUNT || !c.groups.active[g]) continue;
+                const uint32_t j = c.col_index[slot];
+                const glm::vec3 dij = di - glm::vec3(disp[j]);
+                float len;
+                const glm::vec3 n = direction((si - glm::vec3(start[j])) + dij, &len);
+                r -= (c.groups.stiffness[g] * (len - c.col_rest[slot]) + kd_h * glm::dot(n, dij)) * n;
+            }
+            r -= (di - glm::vec3(target[i])) * (inv_h2 / wi);
+        }
+        residual[i] = Particle(r, wi);
+    }
+}
+
 /// Tethers (long-range attachments, Kim, Chentanez and Mueller 2012): particle i may be at most
 /// `length[i]` from the kinematic particle `anchor[i]`; beyond that it is pulled back onto the
 /// sphere, and its displacement takes the same correction (no velocity away from the anchor).
