@@ -143,7 +143,7 @@ TEST(Api, BadParamsLeaveTheClothUnchanged) {
         EXPECT_EQ(std::memcmp(&now, &before, sizeof now), 0) << "params changed by a refused call";
         p = before;
     };
-    p.model = 3;
+    p.model = 4;
     expect_refused(DRAPE_ERROR_INVALID_ENUM);
     p.stiffness[1] = kNaN;
     expect_refused(DRAPE_ERROR_NOT_FINITE);
@@ -157,7 +157,7 @@ TEST(Api, BadParamsLeaveTheClothUnchanged) {
     expect_refused(DRAPE_ERROR_NOT_FINITE);
     p.wind[0] = 1e9f;
     expect_refused(DRAPE_ERROR_INVALID_ARGUMENT);
-    p.iterations = 0;
+    p.iterations = DRAPE_MAX_ITERATIONS + 1;  // 0 is automatic
     expect_refused(DRAPE_ERROR_INVALID_ARGUMENT);
     p.substeps = 1000000;
     expect_refused(DRAPE_ERROR_INVALID_ARGUMENT);

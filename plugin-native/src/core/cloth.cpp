@@ -77,7 +77,24 @@ void Cloth::refresh_derived() {
         h_max = std::min(h_max, mass_spring_max_substep(buffers_[cur_][i].w, ksum, params_.damping, active));
     }
     ms_h_max_ = h_max;
-    implicit_.h = 0;  // masses, pins or stiffness changed: refactor before the next IMPLICIT substep
+    // IMPLICIT: refactor now (not in step, which must not allocate) when what the matrix depends
+    // on changed: effective masses (which particles are kinematic, masses), stiffness, damping.
+    if (params_.model == DRAPE_MODEL_IMPLICIT) {
+        std::vector<float>& key = implicit_.key;
+        const size_t size = 4 + size_t(n);
+        bool changed = key.size() != size;
+        key.resize(size);
+        auto set = [&](size_t k, float v) {
+            if (key[k] != v) changed = true;
+            key[k] = v;
+        };
+        for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) set(size_t(g), params_.stiffness[g]);
+        set(3, params_.damping);
+        for (uint32_t i = 0; i < n; ++i) set(4 + i, buffers_[cur_][i].w);
+        if (changed || implicit_.h == 0) factor_implicit(last_h_ > 0 ? last_h_ : kDefaultH / float(kAutoSubstepsImplicit));
+    } else {
+        implicit_.key.clear();
+    }
     if (kinematic_ != tethered_kinematic_) rebuild_tethers();
     for (uint32_t i = 0; i < n; ++i)
         tether_length_[i] = tether_rest_[i] < 0 ? -1.0f : tether_rest_[i] * (1.0f + params_.max_stretch);
@@ -207,8 +224,7 @@ void Cloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& kine
     Particle* residual = buffers_[spare_].data();
     for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_predict(c, cur, disp, target, iterate, b, e); });
     for (uint32_t k : kinematic_) target[k] = iterate[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
-    if (implicit_.h != c.h && !(implicit_.h > 0 && std::fabs(implicit_.h / c.h - 1.0f) < kImplicitRefactor))
-        factor_implicit(c.h);
+    if (!(std::fabs(implicit_.h / c.h - 1.0f) < kImplicitRefactor)) factor_implicit(c.h);  // dt changed a lot
     const uint32_t iterations = iterations_for();
     const uint32_t free = uint32_t(implicit_.free.size());
     for (uint32_t it = 0; it < iterations; ++it) {
@@ -307,6 +323,7 @@ Result Cloth::step(float dt) {
     const NeighbourTable& nb = topo_.nbr;
     const uint32_t substeps = substeps_for(dt);
     const float h = dt / float(substeps);
+    last_h_ = h;
     const drape_model model = drape_model(params_.model);
 
     std::memcpy(backup_cur_.data(), buffers_[cur_].data(), n * sizeof(Particle));

@@ -127,6 +127,7 @@ protected:
     std::vector<Particle> target_;
     struct ImplicitSolve {
         float h = 0;
+        std::vector<float> key;       ///< stiffness, damping and inverse masses it was built from
         std::vector<uint32_t> free;   ///< particle of each free row, in particle order
         std::vector<uint32_t> perm;   ///< factor row of free particle f
         Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> solver;  // AMD ordering
@@ -135,6 +136,7 @@ protected:
     template <class KinematicAt>
     void implicit_substep(kernels::SubstepContext& c, const KinematicAt& kinematic_at);
     void factor_implicit(float h);
+    float last_h_ = 0;  ///< substep of the last step, s (0: none yet)
     std::vector<float> slot_coef_;  ///< per-spring Jacobi factor of the current step (kernels.h)
     // Column-major copy of the neighbour table for the constraint iteration (kernels.h).
     std::vector<uint32_t> col_index_;

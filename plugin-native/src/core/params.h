@@ -26,6 +26,8 @@ constexpr uint32_t kAutoIterationsImplicit = 4;
 /// IMPLICIT: relative change of the substep beyond which its matrix is refactored (any matrix
 /// gives the exact rest state; a stale one only converges more slowly).
 constexpr float kImplicitRefactor = 0.25f;
+/// Frame step assumed before the first step (for work done ahead of it), s.
+constexpr float kDefaultH = 1.0f / 60.0f;
 /// Fraction of the explicit stability limit used when MASS_SPRING picks substeps itself.
 constexpr float kStabilitySafety = 0.9f;
 /// Jacobi coupling weight theta (kernels.h jacobi_scale); convergent for theta > 1/2.

@@ -912,8 +912,8 @@ Result GlesCloth::gpu_step(float dt) {
             // also writes positions, into the displacement buffer (free after predict).
             run_pass(*p_first, cur, disp, spare, -1, false, along, sub);
             int in = spare, out = spare2;
-            for (uint32_t it = 0; it < params_.iterations; ++it) {
-                if (it + 1 == params_.iterations)
+            for (uint32_t it = 0; it < iterations_for(); ++it) {
+                if (it + 1 == iterations_for())
                     run_pass(*p_commit, in, cur, disp, out, true, along, sub);  // x -> disp, d -> out
                 else
                     run_pass(*p_constraint, in, cur, out, -1, true, along, sub);
@@ -947,7 +947,7 @@ Result GlesCloth::gpu_step(float dt) {
     interaction_end_step(dt, false);  // colliders advance, drag consumed (sleep is CPU-only)
     Result r = write_output();
     stats_.substeps = substeps;
-    stats_.iterations = model == DRAPE_MODEL_MASS_SPRING ? 1 : params_.iterations;
+    stats_.iterations = model == DRAPE_MODEL_MASS_SPRING ? 1 : iterations_for();
     stats_.step_ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (!r.ok()) return r;
     return gl_error("GLES step");
