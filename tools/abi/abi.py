@@ -80,11 +80,11 @@ ENUMS = [
 ]
 
 STRUCTS = [
-    struct("drape_world_desc", "WorldDesc", "", [
+    struct("drape_world_desc", "WorldDesc", "", validate=True, fields=[
         field("thread_count", "u32", "workers for CPU_THREADED including the caller; 0 = hardware count",
               range=(0, 256), default=0),
     ]),
-    struct("drape_cloth_desc", "ClothDesc", "Common to grid and mesh creation.", [
+    struct("drape_cloth_desc", "ClothDesc", "Common to grid and mesh creation.", validate=True, fields=[
         field("backend", "u32", "drape_backend", enum="drape_backend", default="DRAPE_BACKEND_CPU"),
         field("total_mass", "f32", "spread over vertices by area", unit="kg", range=(0, 1e6), lo_open=True,
               default=1.0),

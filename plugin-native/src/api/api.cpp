@@ -120,7 +120,6 @@ HandleTable& handles() {
 // Limits on sizes: far above any game cloth, low enough that sizes cannot overflow.
 constexpr uint32_t kMaxVertices = 1u << 22;
 constexpr float kMaxCoordinate = 1e6f;  // m
-constexpr float kMaxMass = 1e6f;        // kg
 
 #define DRAPE_REQUIRE(cond, status, msg) \
     do {                                 \
@@ -238,11 +237,8 @@ drape_status check_cloth(const drape_cloth* c) {
 
 // desc: already through DRAPE_CHECK_STRUCT. need_available: creation needs the backend here.
 drape_status check_cloth_desc(const drape_cloth_desc* desc, bool need_available = true) {
-    DRAPE_REQUIRE(desc->backend <= DRAPE_BACKEND_GLES, DRAPE_ERROR_INVALID_ENUM,
-                  "backend " + std::to_string(desc->backend) + " is not a drape_backend");
-    DRAPE_REQUIRE(std::isfinite(desc->total_mass), DRAPE_ERROR_NOT_FINITE, "total_mass is NaN or infinite");
-    DRAPE_REQUIRE(desc->total_mass > 0 && desc->total_mass <= kMaxMass, DRAPE_ERROR_INVALID_ARGUMENT,
-                  "total_mass must be in (0, 1e6] kg");
+    std::string problem;  // backend enum, total_mass finite and in (0, 1e6] kg (tools/abi/abi.py)
+    if (drape_status s = abi::Layout<drape_cloth_desc>::check(*desc, &problem)) return fail(s, problem);
     if (!need_available) return DRAPE_OK;
     uint32_t available = 0;
     drape_backend_available(desc->backend, &available);
@@ -459,7 +455,8 @@ drape_status drape_params_default(drape_params* out_params) {
 drape_status drape_world_create(const drape_world_desc* desc, drape_world** out_world) {
     DRAPE_CHECK_STRUCT(desc, drape_world_desc);
     DRAPE_REQUIRE(out_world != nullptr, DRAPE_ERROR_NULL_POINTER, "out_world is NULL");
-    DRAPE_REQUIRE(desc->thread_count <= 256, DRAPE_ERROR_INVALID_ARGUMENT, "thread_count above 256");
+    std::string problem;  // thread_count in [0, 256] (tools/abi/abi.py)
+    if (drape_status s = abi::Layout<drape_world_desc>::check(*desc, &problem)) return fail(s, problem);
     return guarded([&] {
         uint32_t threads = desc->thread_count;
         if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());

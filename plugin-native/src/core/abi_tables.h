@@ -26,6 +26,17 @@ struct Layout<drape_world_desc> {
         s.struct_size = sizeof s;
         return s;
     }
+    /// DRAPE_OK, or the status and *message of the first problem.
+    static drape_status check(const drape_world_desc& s, std::string* message) {
+        auto fail = [message](drape_status status, std::string text) {
+            *message = std::move(text);
+            return status;
+        };
+        if (!(s.thread_count <= 256u))
+            return fail(DRAPE_ERROR_INVALID_ARGUMENT, "thread_count must be in [0, 256]");
+        (void)fail;
+        return DRAPE_OK;
+    }
 };
 
 template <>
@@ -39,6 +50,21 @@ struct Layout<drape_cloth_desc> {
         s.backend = DRAPE_BACKEND_CPU;
         s.total_mass = 1.0f;
         return s;
+    }
+    /// DRAPE_OK, or the status and *message of the first problem.
+    static drape_status check(const drape_cloth_desc& s, std::string* message) {
+        auto fail = [message](drape_status status, std::string text) {
+            *message = std::move(text);
+            return status;
+        };
+        if (s.backend > 2)
+            return fail(DRAPE_ERROR_INVALID_ENUM, "backend " + std::to_string(s.backend) + " is not a drape_backend");
+        if (!std::isfinite(s.total_mass))
+            return fail(DRAPE_ERROR_NOT_FINITE, "total_mass is NaN or infinite");
+        if (!(s.total_mass > 0.0f && s.total_mass <= 1e6f))
+            return fail(DRAPE_ERROR_INVALID_ARGUMENT, "total_mass must be in (0, 1e6] kg");
+        (void)fail;
+        return DRAPE_OK;
     }
 };
 

@@ -66,6 +66,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 // #include <glm/ext/vector_double3.hpp>
 #line 1 "glm/ext/vector_double3.hpp"
 /// @ref core
@@ -5039,7 +5041,7 @@ namespace glm
 
 	/// @}
 }//namespace glm
-#line 10 "plugin-native/src/core/cloth.h"
+#line 12 "plugin-native/src/core/cloth.h"
 // #include <glm/vec3.hpp>
 #line 1 "glm/vec3.hpp"
 /// @ref core
@@ -5496,7 +5498,7 @@ namespace glm
 	/// @}
 }//namespace glm
 #line 15 "glm/vec3.hpp"
-#line 11 "plugin-native/src/core/cloth.h"
+#line 13 "plugin-native/src/core/cloth.h"
 // #include <glm/vec4.hpp>
 #line 1 "glm/vec4.hpp"
 /// @ref core
@@ -8261,782 +8263,1036 @@ namespace glm
 }//namespace glm
 #line 15 "glm/vec4.hpp"
 
-#line 12 "plugin-native/src/core/cloth.h"
-
-// #include "backend/cpu/thread_pool.h"
-#line 1 "plugin-native/src/backend/cpu/thread_pool.h"
-// Persistent worker pool for CPU_THREADED. Workers spin briefly between the many short passes
-// of a step (a step is tens of barriers), then sleep on a condition variable when idle, so an
-// idle world costs no CPU. The paper woke four workers through a mutex per step; here a pass
-// costs one atomic increment to start and one to finish.
-
-
-#include <atomic>
-#include <condition_variable>
-#include <cstdint>
-#include <mutex>
-#include <thread>
-#include <vector>
-
-namespace drape {
-
-class ThreadPool {
-public:
-    /// Below this many items a pass runs on the caller alone: a particle pass over fewer is a few
-    /// microseconds, about what waking and joining the workers costs.
-    static constexpr uint32_t kMinParallelCount = 2048;
-
-    /// threads: total including the calling thread (>= 1).
-    explicit ThreadPool(uint32_t threads);
-    ~ThreadPool();
-    ThreadPool(const ThreadPool&) = delete;
-    ThreadPool& operator=(const ThreadPool&) = delete;
-
-    uint32_t size() const { return uint32_t(workers_.size()) + 1; }
-
-    /// Runs fn(begin, end) over [0, count) split into size() contiguous ranges, one per thread;
-    /// returns when all are done. The split depends only on count and size().
-    template <class Fn>
-    void parallel_for(uint32_t count, Fn&& fn) {
-        const uint32_t n = size();
-        if (n == 1 || count < kMinParallelCount) {
-            fn(0u, count);
-            return;
-        }
-        auto job = [&](uint32_t t) {
-            uint64_t b = uint64_t(count) * t / n, e = uint64_t(count) * (t + 1) / n;
-            fn(uint32_t(b), uint32_t(e));
-        };
-        run(&invoke<decltype(job)>, &job);
-    }
-
-    /// Runs fn(thread_index) once on every thread (0 = caller).
-    template <class Fn>
-    void run_on_all(Fn&& fn) {
-        run(&invoke<Fn>, &fn);
-    }
-
-private:
-    using JobFn = void (*)(void*, uint32_t);
-    template <class F>
-    static void invoke(void* f, uint32_t t) {
-        (*static_cast<F*>(f))(t);
-    }
-    void run(JobFn fn, void* ctx);
-    void worker_main(uint32_t index);
-
-    std::vector<std::thread> workers_;
-    JobFn job_ = nullptr;
-    void* job_ctx_ = nullptr;
-    std::atomic<uint32_t> generation_{0};
-    std::atomic<uint32_t> pending_{0};
-    std::atomic<uint32_t> sleepers_{0};
-    std::atomic<bool> stop_{false};
-    std::mutex mutex_;
-    std::condition_variable wake_;
-};
-
-}  // namespace drape
 #line 14 "plugin-native/src/core/cloth.h"
-// #include "core/interaction.h"  // issue 5: colliders, drag, owner, sleep
-#line 1 "plugin-native/src/core/interaction.h"
-// Run-time state of what a cloth interacts with (issue 5): colliders, touch drag, grabs, the
-// owner transform, and sleeping. Owned by Cloth (member ix_); the Cloth member functions that use
-// it are defined in core/interaction.cpp, and Cloth::step calls three small hooks:
-//   skip_step_asleep() at the top, interaction_substep() after each substep's solve (on the
-//   committed positions), interaction_end_step() when the step is done.
+
+// #include "backend/cpu/kernels.h"
+#line 1 "plugin-native/src/backend/cpu/kernels.h"
+// Per-particle kernels of one substep, each over a range [begin, end) of particles.
+//
+// Every kernel is a gather: particle i reads its own record and its neighbours' records from
+// input buffers and writes only its own record to an output buffer (Jacobi style, the paper's
+// per-vertex formulation). That is what a GLES vertex shader with transform feedback can do, so
+// shaders/ mirrors these functions line by line, and any split of the range over threads gives
+// the same bits.
+//
+// Records are 16 bytes: xyz + w inverse mass (1/kg; 0 = pinned/kinematic). The state of a
+// particle is two records: its position x and its displacement d over the last substep (the
+// velocity times h_prev). Keeping d instead of the previous position matters in float: with many
+// small substeps g h^2 is below half an ulp of a position of a few metres, so x - prev would lose
+// gravity entirely (a stiff mass-spring cloth at y = 10 m would never fall); d keeps it exactly.
 
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
-#include <vector>
 
-// #include <glm/gtc/quaternion.hpp>
-#line 1 "glm/gtc/quaternion.hpp"
-/// @ref gtc_quaternion
-/// @file glm/gtc/quaternion.hpp
+// #include <glm/geometric.hpp>
+#line 1 "glm/geometric.hpp"
+/// @ref core
+/// @file glm/geometric.hpp
 ///
-/// @see core (dependence)
-/// @see gtc_constants (dependence)
+/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
 ///
-/// @defgroup gtc_quaternion GLM_GTC_quaternion
-/// @ingroup gtc
+/// @defgroup core_func_geometric Geometric functions
+/// @ingroup core
 ///
-/// Include <glm/gtc/quaternion.hpp> to use the features of this extension.
+/// These operate on vectors as vectors, not component-wise.
 ///
-/// Defines a templated quaternion type and several quaternion operations.
+/// Include <glm/geometric.hpp> to use these core features.
 
 
 
-// Dependency:
-// #include "../gtc/constants.hpp"
-#line 1 "glm/gtc/constants.hpp"
-/// @ref gtc_constants
-/// @file glm/gtc/constants.hpp
-///
-/// @see core (dependence)
-///
-/// @defgroup gtc_constants GLM_GTC_constants
-/// @ingroup gtc
-///
-/// Include <glm/gtc/constants.hpp> to use the features of this extension.
-///
-/// Provide a list of constants and precomputed useful values.
-
-
-
-// Dependencies
-// #include "../ext/scalar_constants.hpp"
-#line 1 "glm/ext/scalar_constants.hpp"
-/// @ref ext_scalar_constants
-/// @file glm/ext/scalar_constants.hpp
-///
-/// @defgroup ext_scalar_constants GLM_EXT_scalar_constants
-/// @ingroup ext
-///
-/// Provides a list of constants and precomputed useful values.
-///
-/// Include <glm/ext/scalar_constants.hpp> to use the features of this extension.
-
-
-
-// Dependencies
-// #include "../detail/setup.hpp"
-#line 15 "glm/ext/scalar_constants.hpp"
-
-#if GLM_MESSAGES == GLM_ENABLE && !defined(GLM_EXT_INCLUDED)
-#	pragma message("GLM: GLM_EXT_scalar_constants extension included")
-#endif
+// #include "detail/type_vec3.hpp"
+#line 16 "glm/geometric.hpp"
 
 namespace glm
 {
-	/// @addtogroup ext_scalar_constants
+	/// @addtogroup core_func_geometric
 	/// @{
 
-	/// Return the epsilon constant for floating point types.
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType epsilon();
+	/// Returns the length of x, i.e., sqrt(x * x).
+	///
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T Floating-point scalar types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/length.xml">GLSL length man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL T length(vec<L, T, Q> const& x);
 
-	/// Return the pi constant for floating point types.
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType pi();
+	/// Returns the distance betwwen p0 and p1, i.e., length(p0 - p1).
+	///
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T Floating-point scalar types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/distance.xml">GLSL distance man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL T distance(vec<L, T, Q> const& p0, vec<L, T, Q> const& p1);
 
-	/// Return the value of cos(1 / 2) for floating point types.
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType cos_one_over_two();
+	/// Returns the dot product of x and y, i.e., result = x * y.
+	///
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T Floating-point scalar types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/dot.xml">GLSL dot man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL T dot(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
+
+	/// Returns the cross product of x and y.
+	///
+	/// @tparam T Floating-point scalar types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/cross.xml">GLSL cross man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL vec<3, T, Q> cross(vec<3, T, Q> const& x, vec<3, T, Q> const& y);
+
+	/// Returns a vector in the same direction as x but with length of 1.
+	/// According to issue 10 GLSL 1.10 specification, if length(x) == 0 then result is undefined and generate an error.
+	///
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T Floating-point scalar types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/normalize.xml">GLSL normalize man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> normalize(vec<L, T, Q> const& x);
+
+	/// If dot(Nref, I) < 0.0, return N, otherwise, return -N.
+	///
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T Floating-point scalar types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/faceforward.xml">GLSL faceforward man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> faceforward(
+		vec<L, T, Q> const& N,
+		vec<L, T, Q> const& I,
+		vec<L, T, Q> const& Nref);
+
+	/// For the incident vector I and surface orientation N,
+	/// returns the reflection direction : result = I - 2.0 * dot(N, I) * N.
+	///
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T Floating-point scalar types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/reflect.xml">GLSL reflect man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> reflect(
+		vec<L, T, Q> const& I,
+		vec<L, T, Q> const& N);
+
+	/// For the incident vector I and surface normal N,
+	/// and the ratio of indices of refraction eta,
+	/// return the refraction vector.
+	///
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T Floating-point scalar types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/refract.xml">GLSL refract man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> refract(
+		vec<L, T, Q> const& I,
+		vec<L, T, Q> const& N,
+		T eta);
 
 	/// @}
-} //namespace glm
+}//namespace glm
 
-// #include "scalar_constants.inl"
-#line 1 "glm/ext/scalar_constants.inl"
-#include <limits>
+// #include "detail/func_geometric.inl"
+#line 1 "glm/detail/func_geometric.inl"
+// #include "../exponential.hpp"
+#line 1 "glm/exponential.hpp"
+/// @ref core
+/// @file glm/exponential.hpp
+///
+/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.2 Exponential Functions</a>
+///
+/// @defgroup core_func_exponential Exponential functions
+/// @ingroup core
+///
+/// Provides GLSL exponential functions
+///
+/// These all operate component-wise. The description is per component.
+///
+/// Include <glm/exponential.hpp> to use these core features.
 
-namespace glm
-{
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType epsilon()
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'epsilon' only accepts floating-point inputs");
-		return std::numeric_limits<genType>::epsilon();
-	}
 
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType pi()
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'pi' only accepts floating-point inputs");
-		return static_cast<genType>(3.14159265358979323846264338327950288);
-	}
 
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType cos_one_over_two()
-	{
-		return genType(0.877582561890372716130286068203503191);
-	}
-} //namespace glm
-#line 41 "glm/ext/scalar_constants.hpp"
-#line 17 "glm/gtc/constants.hpp"
+// #include "detail/type_vec1.hpp"
+#line 1 "glm/detail/type_vec1.hpp"
+/// @ref core
+/// @file glm/detail/type_vec1.hpp
 
-#if GLM_MESSAGES == GLM_ENABLE && !defined(GLM_EXT_INCLUDED)
-#	pragma message("GLM: GLM_GTC_constants extension included")
+
+
+// #include "qualifier.hpp"
+#line 7 "glm/detail/type_vec1.hpp"
+#if GLM_CONFIG_SWIZZLE == GLM_SWIZZLE_OPERATOR
+// #	include "_swizzle.hpp"
+#line 9 "glm/detail/type_vec1.hpp"
+#elif GLM_CONFIG_SWIZZLE == GLM_SWIZZLE_FUNCTION
+// #	include "_swizzle_func.hpp"
+#line 11 "glm/detail/type_vec1.hpp"
 #endif
-
-namespace glm
-{
-	/// @addtogroup gtc_constants
-	/// @{
-
-	/// Return 0.
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType zero();
-
-	/// Return 1.
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType one();
-
-	/// Return pi * 2.
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType two_pi();
-
-	/// Return square root of pi.
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType root_pi();
-
-	/// Return pi / 2.
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType half_pi();
-
-	/// Return pi / 2 * 3.
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType three_over_two_pi();
-
-	/// Return pi / 4.
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType quarter_pi();
-
-	/// Return 1 / pi.
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType one_over_pi();
-
-	/// Return 1 / (pi * 2).
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType one_over_two_pi();
-
-	/// Return 2 / pi.
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType two_over_pi();
-
-	/// Return 4 / pi.
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType four_over_pi();
-
-	/// Return 2 / sqrt(pi).
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType two_over_root_pi();
-
-	/// Return 1 / sqrt(2).
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType one_over_root_two();
-
-	/// Return sqrt(pi / 2).
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType root_half_pi();
-
-	/// Return sqrt(2 * pi).
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType root_two_pi();
-
-	/// Return sqrt(ln(4)).
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType root_ln_four();
-
-	/// Return e constant.
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType e();
-
-	/// Return Euler's constant.
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType euler();
-
-	/// Return sqrt(2).
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType root_two();
-
-	/// Return sqrt(3).
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType root_three();
-
-	/// Return sqrt(5).
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType root_five();
-
-	/// Return ln(2).
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType ln_two();
-
-	/// Return ln(10).
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType ln_ten();
-
-	/// Return ln(ln(2)).
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType ln_ln_two();
-
-	/// Return 1 / 3.
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType third();
-
-	/// Return 2 / 3.
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType two_thirds();
-
-	/// Return the golden ratio constant.
-	/// @see gtc_constants
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType golden_ratio();
-
-	/// @}
-} //namespace glm
-
-// #include "constants.inl"
-#line 1 "glm/gtc/constants.inl"
-/// @ref gtc_constants
-
-namespace glm
-{
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType zero()
-	{
-		return genType(0);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType one()
-	{
-		return genType(1);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType two_pi()
-	{
-		return genType(6.28318530717958647692528676655900576);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType root_pi()
-	{
-		return genType(1.772453850905516027);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType half_pi()
-	{
-		return genType(1.57079632679489661923132169163975144);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType three_over_two_pi()
-	{
-		return genType(4.71238898038468985769396507491925432);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType quarter_pi()
-	{
-		return genType(0.785398163397448309615660845819875721);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType one_over_pi()
-	{
-		return genType(0.318309886183790671537767526745028724);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType one_over_two_pi()
-	{
-		return genType(0.159154943091895335768883763372514362);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType two_over_pi()
-	{
-		return genType(0.636619772367581343075535053490057448);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType four_over_pi()
-	{
-		return genType(1.273239544735162686151070106980114898);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType two_over_root_pi()
-	{
-		return genType(1.12837916709551257389615890312154517);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType one_over_root_two()
-	{
-		return genType(0.707106781186547524400844362104849039);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType root_half_pi()
-	{
-		return genType(1.253314137315500251);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType root_two_pi()
-	{
-		return genType(2.506628274631000502);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType root_ln_four()
-	{
-		return genType(1.17741002251547469);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType e()
-	{
-		return genType(2.71828182845904523536);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType euler()
-	{
-		return genType(0.577215664901532860606);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType root_two()
-	{
-		return genType(1.41421356237309504880168872420969808);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType root_three()
-	{
-		return genType(1.73205080756887729352744634150587236);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType root_five()
-	{
-		return genType(2.23606797749978969640917366873127623);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType ln_two()
-	{
-		return genType(0.693147180559945309417232121458176568);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType ln_ten()
-	{
-		return genType(2.30258509299404568401799145468436421);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType ln_ln_two()
-	{
-		return genType(-0.3665129205816643);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType third()
-	{
-		return genType(0.3333333333333333333333333333333333333333);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType two_thirds()
-	{
-		return genType(0.666666666666666666666666666666666666667);
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType golden_ratio()
-	{
-		return genType(1.61803398874989484820458683436563811);
-	}
-
-} //namespace glm
-#line 166 "glm/gtc/constants.hpp"
-#line 18 "glm/gtc/quaternion.hpp"
-// #include "../gtc/matrix_transform.hpp"
-#line 1 "glm/gtc/matrix_transform.hpp"
-/// @ref gtc_matrix_transform
-/// @file glm/gtc/matrix_transform.hpp
-///
-/// @see core (dependence)
-/// @see gtx_transform
-/// @see gtx_transform2
-///
-/// @defgroup gtc_matrix_transform GLM_GTC_matrix_transform
-/// @ingroup gtc
-///
-/// Include <glm/gtc/matrix_transform.hpp> to use the features of this extension.
-///
-/// Defines functions that generate common transformation matrices.
-///
-/// The matrices generated by this extension use standard OpenGL fixed-function
-/// conventions. For example, the lookAt function generates a transform from world
-/// space into the specific eye space that the projective matrix functions
-/// (perspective, ortho, etc) are designed to expect. The OpenGL compatibility
-/// specifications defines the particular layout of this eye space.
-
-
-
-// Dependencies
-// #include "../mat4x4.hpp"
-#line 1 "glm/mat4x4.hpp"
-/// @ref core
-/// @file glm/mat4x4.hpp
-
-
-// #include "./ext/matrix_double4x4.hpp"
-#line 1 "glm/ext/matrix_double4x4.hpp"
-/// @ref core
-/// @file glm/ext/matrix_double4x4.hpp
-
-
-// #include "../detail/type_mat4x4.hpp"
-#line 1 "glm/detail/type_mat4x4.hpp"
-/// @ref core
-/// @file glm/detail/type_mat4x4.hpp
-
-
-
-// #include "type_vec4.hpp"
-#line 7 "glm/detail/type_mat4x4.hpp"
-#include <limits>
 #include <cstddef>
 
 namespace glm
 {
 	template<typename T, qualifier Q>
-	struct mat<4, 4, T, Q>
+	struct vec<1, T, Q>
 	{
-		typedef vec<4, T, Q> col_type;
-		typedef vec<4, T, Q> row_type;
-		typedef mat<4, 4, T, Q> type;
-		typedef mat<4, 4, T, Q> transpose_type;
+		// -- Implementation detail --
+
 		typedef T value_type;
+		typedef vec<1, T, Q> type;
+		typedef vec<1, bool, Q> bool_type;
 
-	private:
-		col_type value[4];
+		// -- Data --
 
-	public:
-		// -- Accesses --
+#		if GLM_SILENT_WARNINGS == GLM_ENABLE
+#			if GLM_COMPILER & GLM_COMPILER_GCC
+#				pragma GCC diagnostic push
+#				pragma GCC diagnostic ignored "-Wpedantic"
+#			elif GLM_COMPILER & GLM_COMPILER_CLANG
+#				pragma clang diagnostic push
+#				pragma clang diagnostic ignored "-Wgnu-anonymous-struct"
+#				pragma clang diagnostic ignored "-Wnested-anon-types"
+#			elif GLM_COMPILER & GLM_COMPILER_VC
+#				pragma warning(push)
+#				pragma warning(disable: 4201)  // nonstandard extension used : nameless struct/union
+#			endif
+#		endif
 
+#		if GLM_CONFIG_XYZW_ONLY
+			T x;
+#		elif GLM_CONFIG_ANONYMOUS_STRUCT == GLM_ENABLE
+			union
+			{
+				T x;
+				T r;
+				T s;
+
+				typename detail::storage<1, T, detail::is_aligned<Q>::value>::type data;
+/*
+#				if GLM_CONFIG_SWIZZLE == GLM_SWIZZLE_OPERATOR
+					_GLM_SWIZZLE1_2_MEMBERS(T, Q, x)
+					_GLM_SWIZZLE1_2_MEMBERS(T, Q, r)
+					_GLM_SWIZZLE1_2_MEMBERS(T, Q, s)
+					_GLM_SWIZZLE1_3_MEMBERS(T, Q, x)
+					_GLM_SWIZZLE1_3_MEMBERS(T, Q, r)
+					_GLM_SWIZZLE1_3_MEMBERS(T, Q, s)
+					_GLM_SWIZZLE1_4_MEMBERS(T, Q, x)
+					_GLM_SWIZZLE1_4_MEMBERS(T, Q, r)
+					_GLM_SWIZZLE1_4_MEMBERS(T, Q, s)
+#				endif
+*/
+			};
+#		else
+			union {T x, r, s;};
+/*
+#			if GLM_CONFIG_SWIZZLE == GLM_SWIZZLE_FUNCTION
+				GLM_SWIZZLE_GEN_VEC_FROM_VEC1(T, Q)
+#			endif
+*/
+#		endif
+
+#		if GLM_SILENT_WARNINGS == GLM_ENABLE
+#			if GLM_COMPILER & GLM_COMPILER_CLANG
+#				pragma clang diagnostic pop
+#			elif GLM_COMPILER & GLM_COMPILER_GCC
+#				pragma GCC diagnostic pop
+#			elif GLM_COMPILER & GLM_COMPILER_VC
+#				pragma warning(pop)
+#			endif
+#		endif
+
+		// -- Component accesses --
+
+		/// Return the count of components of the vector
 		typedef length_t length_type;
-		GLM_FUNC_DECL static GLM_CONSTEXPR length_type length(){return 4;}
+		GLM_FUNC_DECL static GLM_CONSTEXPR length_type length(){return 1;}
 
-		GLM_FUNC_DECL col_type & operator[](length_type i);
-		GLM_FUNC_DECL GLM_CONSTEXPR col_type const& operator[](length_type i) const;
+		GLM_FUNC_DECL GLM_CONSTEXPR T & operator[](length_type i);
+		GLM_FUNC_DECL GLM_CONSTEXPR T const& operator[](length_type i) const;
 
-		// -- Constructors --
+		// -- Implicit basic constructors --
 
-		GLM_FUNC_DECL GLM_CONSTEXPR mat() GLM_DEFAULT;
+		GLM_FUNC_DECL GLM_CONSTEXPR vec() GLM_DEFAULT;
+		GLM_FUNC_DECL GLM_CONSTEXPR vec(vec const& v) GLM_DEFAULT;
 		template<qualifier P>
-		GLM_FUNC_DECL GLM_CONSTEXPR mat(mat<4, 4, T, P> const& m);
+		GLM_FUNC_DECL GLM_CONSTEXPR vec(vec<1, T, P> const& v);
 
-		GLM_FUNC_DECL explicit GLM_CONSTEXPR mat(T const& x);
-		GLM_FUNC_DECL GLM_CONSTEXPR mat(
-			T const& x0, T const& y0, T const& z0, T const& w0,
-			T const& x1, T const& y1, T const& z1, T const& w1,
-			T const& x2, T const& y2, T const& z2, T const& w2,
-			T const& x3, T const& y3, T const& z3, T const& w3);
-		GLM_FUNC_DECL GLM_CONSTEXPR mat(
-			col_type const& v0,
-			col_type const& v1,
-			col_type const& v2,
-			col_type const& v3);
+		// -- Explicit basic constructors --
 
-		// -- Conversions --
+		GLM_FUNC_DECL GLM_CONSTEXPR explicit vec(T scalar);
 
-		template<
-			typename X1, typename Y1, typename Z1, typename W1,
-			typename X2, typename Y2, typename Z2, typename W2,
-			typename X3, typename Y3, typename Z3, typename W3,
-			typename X4, typename Y4, typename Z4, typename W4>
-		GLM_FUNC_DECL GLM_CONSTEXPR mat(
-			X1 const& x1, Y1 const& y1, Z1 const& z1, W1 const& w1,
-			X2 const& x2, Y2 const& y2, Z2 const& z2, W2 const& w2,
-			X3 const& x3, Y3 const& y3, Z3 const& z3, W3 const& w3,
-			X4 const& x4, Y4 const& y4, Z4 const& z4, W4 const& w4);
+		// -- Conversion vector constructors --
 
-		template<typename V1, typename V2, typename V3, typename V4>
-		GLM_FUNC_DECL GLM_CONSTEXPR mat(
-			vec<4, V1, Q> const& v1,
-			vec<4, V2, Q> const& v2,
-			vec<4, V3, Q> const& v3,
-			vec<4, V4, Q> const& v4);
-
-		// -- Matrix conversions --
-
+		/// Explicit conversions (From section 5.4.1 Conversion and scalar constructors of GLSL 1.30.08 specification)
 		template<typename U, qualifier P>
-		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<4, 4, U, P> const& m);
+		GLM_FUNC_DECL GLM_CONSTEXPR GLM_EXPLICIT vec(vec<2, U, P> const& v);
+		/// Explicit conversions (From section 5.4.1 Conversion and scalar constructors of GLSL 1.30.08 specification)
+		template<typename U, qualifier P>
+		GLM_FUNC_DECL GLM_CONSTEXPR GLM_EXPLICIT vec(vec<3, U, P> const& v);
+		/// Explicit conversions (From section 5.4.1 Conversion and scalar constructors of GLSL 1.30.08 specification)
+		template<typename U, qualifier P>
+		GLM_FUNC_DECL GLM_CONSTEXPR GLM_EXPLICIT vec(vec<4, U, P> const& v);
 
-		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<2, 2, T, Q> const& x);
-		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<3, 3, T, Q> const& x);
-		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<2, 3, T, Q> const& x);
-		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<3, 2, T, Q> const& x);
-		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<2, 4, T, Q> const& x);
-		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<4, 2, T, Q> const& x);
-		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<3, 4, T, Q> const& x);
-		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<4, 3, T, Q> const& x);
+		/// Explicit conversions (From section 5.4.1 Conversion and scalar constructors of GLSL 1.30.08 specification)
+		template<typename U, qualifier P>
+		GLM_FUNC_DECL GLM_CONSTEXPR GLM_EXPLICIT vec(vec<1, U, P> const& v);
 
+		// -- Swizzle constructors --
+/*
+#		if GLM_CONFIG_SWIZZLE == GLM_SWIZZLE_OPERATOR
+			template<int E0>
+			GLM_FUNC_DECL GLM_CONSTEXPR vec(detail::_swizzle<1, T, Q, E0, -1,-2,-3> const& that)
+			{
+				*this = that();
+			}
+#		endif//GLM_CONFIG_SWIZZLE == GLM_SWIZZLE_OPERATOR
+*/
 		// -- Unary arithmetic operators --
 
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator=(vec const& v) GLM_DEFAULT;
+
 		template<typename U>
-		GLM_FUNC_DECL mat<4, 4, T, Q> & operator=(mat<4, 4, U, Q> const& m);
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator=(vec<1, U, Q> const& v);
 		template<typename U>
-		GLM_FUNC_DECL mat<4, 4, T, Q> & operator+=(U s);
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator+=(U scalar);
 		template<typename U>
-		GLM_FUNC_DECL mat<4, 4, T, Q> & operator+=(mat<4, 4, U, Q> const& m);
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator+=(vec<1, U, Q> const& v);
 		template<typename U>
-		GLM_FUNC_DECL mat<4, 4, T, Q> & operator-=(U s);
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator-=(U scalar);
 		template<typename U>
-		GLM_FUNC_DECL mat<4, 4, T, Q> & operator-=(mat<4, 4, U, Q> const& m);
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator-=(vec<1, U, Q> const& v);
 		template<typename U>
-		GLM_FUNC_DECL mat<4, 4, T, Q> & operator*=(U s);
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator*=(U scalar);
 		template<typename U>
-		GLM_FUNC_DECL mat<4, 4, T, Q> & operator*=(mat<4, 4, U, Q> const& m);
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator*=(vec<1, U, Q> const& v);
 		template<typename U>
-		GLM_FUNC_DECL mat<4, 4, T, Q> & operator/=(U s);
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator/=(U scalar);
 		template<typename U>
-		GLM_FUNC_DECL mat<4, 4, T, Q> & operator/=(mat<4, 4, U, Q> const& m);
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator/=(vec<1, U, Q> const& v);
 
 		// -- Increment and decrement operators --
 
-		GLM_FUNC_DECL mat<4, 4, T, Q> & operator++();
-		GLM_FUNC_DECL mat<4, 4, T, Q> & operator--();
-		GLM_FUNC_DECL mat<4, 4, T, Q> operator++(int);
-		GLM_FUNC_DECL mat<4, 4, T, Q> operator--(int);
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator++();
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator--();
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator++(int);
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator--(int);
+
+		// -- Unary bit operators --
+
+		template<typename U>
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator%=(U scalar);
+		template<typename U>
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator%=(vec<1, U, Q> const& v);
+		template<typename U>
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator&=(U scalar);
+		template<typename U>
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator&=(vec<1, U, Q> const& v);
+		template<typename U>
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator|=(U scalar);
+		template<typename U>
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator|=(vec<1, U, Q> const& v);
+		template<typename U>
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator^=(U scalar);
+		template<typename U>
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator^=(vec<1, U, Q> const& v);
+		template<typename U>
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator<<=(U scalar);
+		template<typename U>
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator<<=(vec<1, U, Q> const& v);
+		template<typename U>
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator>>=(U scalar);
+		template<typename U>
+		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator>>=(vec<1, U, Q> const& v);
 	};
 
 	// -- Unary operators --
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL mat<4, 4, T, Q> operator+(mat<4, 4, T, Q> const& m);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator+(vec<1, T, Q> const& v);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL mat<4, 4, T, Q> operator-(mat<4, 4, T, Q> const& m);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator-(vec<1, T, Q> const& v);
 
 	// -- Binary operators --
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL mat<4, 4, T, Q> operator+(mat<4, 4, T, Q> const& m, T const& s);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator+(vec<1, T, Q> const& v, T scalar);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL mat<4, 4, T, Q> operator+(T const& s, mat<4, 4, T, Q> const& m);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator+(T scalar, vec<1, T, Q> const& v);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL mat<4, 4, T, Q> operator+(mat<4, 4, T, Q> const& m1, mat<4, 4, T, Q> const& m2);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator+(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL mat<4, 4, T, Q> operator-(mat<4, 4, T, Q> const& m, T const& s);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator-(vec<1, T, Q> const& v, T scalar);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL mat<4, 4, T, Q> operator-(T const& s, mat<4, 4, T, Q> const& m);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator-(T scalar, vec<1, T, Q> const& v);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL mat<4, 4, T, Q> operator-(mat<4, 4, T, Q> const& m1,	mat<4, 4, T, Q> const& m2);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator-(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL mat<4, 4, T, Q> operator*(mat<4, 4, T, Q> const& m, T const& s);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator*(vec<1, T, Q> const& v, T scalar);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL mat<4, 4, T, Q> operator*(T const& s, mat<4, 4, T, Q> const& m);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator*(T scalar, vec<1, T, Q> const& v);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL typename mat<4, 4, T, Q>::col_type operator*(mat<4, 4, T, Q> const& m, typename mat<4, 4, T, Q>::row_type const& v);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator*(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL typename mat<4, 4, T, Q>::row_type operator*(typename mat<4, 4, T, Q>::col_type const& v, mat<4, 4, T, Q> const& m);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator/(vec<1, T, Q> const& v, T scalar);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL mat<2, 4, T, Q> operator*(mat<4, 4, T, Q> const& m1, mat<2, 4, T, Q> const& m2);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator/(T scalar, vec<1, T, Q> const& v);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL mat<3, 4, T, Q> operator*(mat<4, 4, T, Q> const& m1, mat<3, 4, T, Q> const& m2);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator/(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL mat<4, 4, T, Q> operator*(mat<4, 4, T, Q> const& m1, mat<4, 4, T, Q> const& m2);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator%(vec<1, T, Q> const& v, T scalar);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL mat<4, 4, T, Q> operator/(mat<4, 4, T, Q> const& m, T const& s);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator%(T scalar, vec<1, T, Q> const& v);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL mat<4, 4, T, Q> operator/(T const& s, mat<4, 4, T, Q> const& m);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator%(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL typename mat<4, 4, T, Q>::col_type operator/(mat<4, 4, T, Q> const& m, typename mat<4, 4, T, Q>::row_type const& v);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator&(vec<1, T, Q> const& v, T scalar);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL typename mat<4, 4, T, Q>::row_type operator/(typename mat<4, 4, T, Q>::col_type const& v, mat<4, 4, T, Q> const& m);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator&(T scalar, vec<1, T, Q> const& v);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL mat<4, 4, T, Q> operator/(mat<4, 4, T, Q> const& m1,	mat<4, 4, T, Q> const& m2);
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator&(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator|(vec<1, T, Q> const& v, T scalar);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator|(T scalar, vec<1, T, Q> const& v);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator|(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator^(vec<1, T, Q> const& v, T scalar);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator^(T scalar, vec<1, T, Q> const& v);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator^(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator<<(vec<1, T, Q> const& v, T scalar);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator<<(T scalar, vec<1, T, Q> const& v);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator<<(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator>>(vec<1, T, Q> const& v, T scalar);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator>>(T scalar, vec<1, T, Q> const& v);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator>>(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator~(vec<1, T, Q> const& v);
 
 	// -- Boolean operators --
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL bool operator==(mat<4, 4, T, Q> const& m1, mat<4, 4, T, Q> const& m2);
+	GLM_FUNC_DECL GLM_CONSTEXPR bool operator==(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
 
 	template<typename T, qualifier Q>
-	GLM_FUNC_DECL bool operator!=(mat<4, 4, T, Q> const& m1, mat<4, 4, T, Q> const& m2);
+	GLM_FUNC_DECL GLM_CONSTEXPR bool operator!=(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
+
+	template<qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, bool, Q> operator&&(vec<1, bool, Q> const& v1, vec<1, bool, Q> const& v2);
+
+	template<qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, bool, Q> operator||(vec<1, bool, Q> const& v1, vec<1, bool, Q> const& v2);
 }//namespace glm
 
 #ifndef GLM_EXTERNAL_TEMPLATE
-// #include "type_mat4x4.inl"
-#line 1 "glm/detail/type_mat4x4.inl"
-// #include "../matrix.hpp"
-#line 1 "glm/matrix.hpp"
+// #include "type_vec1.inl"
+#line 1 "glm/detail/type_vec1.inl"
 /// @ref core
-/// @file glm/matrix.hpp
-///
-/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.6 Matrix Functions</a>
-///
-/// @defgroup core_func_matrix Matrix functions
-/// @ingroup core
-///
-/// Provides GLSL matrix functions.
-///
-/// Include <glm/matrix.hpp> to use these core features.
 
+// #include "./compute_vector_relational.hpp"
+#line 4 "glm/detail/type_vec1.inl"
 
+namespace glm
+{
+	// -- Implicit basic constructors --
 
-// Dependencies
-// #include "detail/qualifier.hpp"
-#line 17 "glm/matrix.hpp"
-// #include "detail/setup.hpp"
-#line 18 "glm/matrix.hpp"
-// #include "vec2.hpp"
-#line 1 "glm/vec2.hpp"
-/// @ref core
-/// @file glm/vec2.hpp
+#	if GLM_CONFIG_DEFAULTED_FUNCTIONS == GLM_DISABLE
+		template<typename T, qualifier Q>
+		GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q>::vec()
+#			if GLM_CONFIG_CTOR_INIT != GLM_CTOR_INIT_DISABLE
+				: x(0)
+#			endif
+		{}
 
+		template<typename T, qualifier Q>
+		GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q>::vec(vec<1, T, Q> const& v)
+			: x(v.x)
+		{}
+#	endif
 
-// #include "./ext/vector_bool2.hpp"
-#line 1 "glm/ext/vector_bool2.hpp"
-/// @ref core
-/// @file glm/ext/vector_bool2.hpp
+	template<typename T, qualifier Q>
+	template<qualifier P>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q>::vec(vec<1, T, P> const& v)
+		: x(v.x)
+	{}
 
+	// -- Explicit basic constructors --
 
-// #include "../detail/type_vec2.hpp"
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q>::vec(T scalar)
+		: x(scalar)
+	{}
+
+	// -- Conversion vector constructors --
+
+	template<typename T, qualifier Q>
+	template<typename U, qualifier P>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q>::vec(vec<1, U, P> const& v)
+		: x(static_cast<T>(v.x))
+	{}
+
+	template<typename T, qualifier Q>
+	template<typename U, qualifier P>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q>::vec(vec<2, U, P> const& v)
+		: x(static_cast<T>(v.x))
+	{}
+
+	template<typename T, qualifier Q>
+	template<typename U, qualifier P>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q>::vec(vec<3, U, P> const& v)
+		: x(static_cast<T>(v.x))
+	{}
+
+	template<typename T, qualifier Q>
+	template<typename U, qualifier P>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q>::vec(vec<4, U, P> const& v)
+		: x(static_cast<T>(v.x))
+	{}
+
+	// -- Component accesses --
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR T & vec<1, T, Q>::operator[](typename vec<1, T, Q>::length_type)
+	{
+		return x;
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR T const& vec<1, T, Q>::operator[](typename vec<1, T, Q>::length_type) const
+	{
+		return x;
+	}
+
+	// -- Unary arithmetic operators --
+
+#	if GLM_CONFIG_DEFAULTED_FUNCTIONS == GLM_DISABLE
+		template<typename T, qualifier Q>
+		GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator=(vec<1, T, Q> const& v)
+		{
+			this->x = v.x;
+			return *this;
+		}
+#	endif
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator=(vec<1, U, Q> const& v)
+	{
+		this->x = static_cast<T>(v.x);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator+=(U scalar)
+	{
+		this->x += static_cast<T>(scalar);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator+=(vec<1, U, Q> const& v)
+	{
+		this->x += static_cast<T>(v.x);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator-=(U scalar)
+	{
+		this->x -= static_cast<T>(scalar);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator-=(vec<1, U, Q> const& v)
+	{
+		this->x -= static_cast<T>(v.x);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator*=(U scalar)
+	{
+		this->x *= static_cast<T>(scalar);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator*=(vec<1, U, Q> const& v)
+	{
+		this->x *= static_cast<T>(v.x);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator/=(U scalar)
+	{
+		this->x /= static_cast<T>(scalar);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator/=(vec<1, U, Q> const& v)
+	{
+		this->x /= static_cast<T>(v.x);
+		return *this;
+	}
+
+	// -- Increment and decrement operators --
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator++()
+	{
+		++this->x;
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator--()
+	{
+		--this->x;
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> vec<1, T, Q>::operator++(int)
+	{
+		vec<1, T, Q> Result(*this);
+		++*this;
+		return Result;
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> vec<1, T, Q>::operator--(int)
+	{
+		vec<1, T, Q> Result(*this);
+		--*this;
+		return Result;
+	}
+
+	// -- Unary bit operators --
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator%=(U scalar)
+	{
+		this->x %= static_cast<T>(scalar);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator%=(vec<1, U, Q> const& v)
+	{
+		this->x %= static_cast<T>(v.x);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator&=(U scalar)
+	{
+		this->x &= static_cast<T>(scalar);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator&=(vec<1, U, Q> const& v)
+	{
+		this->x &= static_cast<T>(v.x);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator|=(U scalar)
+	{
+		this->x |= static_cast<T>(scalar);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator|=(vec<1, U, Q> const& v)
+	{
+		this->x |= U(v.x);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator^=(U scalar)
+	{
+		this->x ^= static_cast<T>(scalar);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator^=(vec<1, U, Q> const& v)
+	{
+		this->x ^= static_cast<T>(v.x);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator<<=(U scalar)
+	{
+		this->x <<= static_cast<T>(scalar);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator<<=(vec<1, U, Q> const& v)
+	{
+		this->x <<= static_cast<T>(v.x);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator>>=(U scalar)
+	{
+		this->x >>= static_cast<T>(scalar);
+		return *this;
+	}
+
+	template<typename T, qualifier Q>
+	template<typename U>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator>>=(vec<1, U, Q> const& v)
+	{
+		this->x >>= static_cast<T>(v.x);
+		return *this;
+	}
+
+	// -- Unary constant operators --
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator+(vec<1, T, Q> const& v)
+	{
+		return v;
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator-(vec<1, T, Q> const& v)
+	{
+		return vec<1, T, Q>(
+			-v.x);
+	}
+
+	// -- Binary arithmetic operators --
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator+(vec<1, T, Q> const& v, T scalar)
+	{
+		return vec<1, T, Q>(
+			v.x + scalar);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator+(T scalar, vec<1, T, Q> const& v)
+	{
+		return vec<1, T, Q>(
+			scalar + v.x);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator+(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
+	{
+		return vec<1, T, Q>(
+			v1.x + v2.x);
+	}
+
+	//operator-
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator-(vec<1, T, Q> const& v, T scalar)
+	{
+		return vec<1, T, Q>(
+			v.x - scalar);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator-(T scalar, vec<1, T, Q> const& v)
+	{
+		return vec<1, T, Q>(
+			scalar - v.x);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator-(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
+	{
+		return vec<1, T, Q>(
+			v1.x - v2.x);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator*(vec<1, T, Q> const& v, T scalar)
+	{
+		return vec<1, T, Q>(
+			v.x * scalar);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator*(T scalar, vec<1, T, Q> const& v)
+	{
+		return vec<1, T, Q>(
+			scalar * v.x);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator*(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
+	{
+		return vec<1, T, Q>(
+			v1.x * v2.x);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator/(vec<1, T, Q> const& v, T scalar)
+	{
+		return vec<1, T, Q>(
+			v.x / scalar);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator/(T scalar, vec<1, T, Q> const& v)
+	{
+		return vec<1, T, Q>(
+			scalar / v.x);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator/(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
+	{
+		return vec<1, T, Q>(
+			v1.x / v2.x);
+	}
+
+	// -- Binary bit operators --
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator%(vec<1, T, Q> const& v, T scalar)
+	{
+		return vec<1, T, Q>(
+			v.x % scalar);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator%(T scalar, vec<1, T, Q> const& v)
+	{
+		return vec<1, T, Q>(
+			scalar % v.x);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator%(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
+	{
+		return vec<1, T, Q>(
+			v1.x % v2.x);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator&(vec<1, T, Q> const& v, T scalar)
+	{
+		return vec<1, T, Q>(
+			v.x & scalar);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator&(T scalar, vec<1, T, Q> const& v)
+	{
+		return vec<1, T, Q>(
+			scalar & v.x);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator&(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
+	{
+		return vec<1, T, Q>(
+			v1.x & v2.x);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator|(vec<1, T, Q> const& v, T scalar)
+	{
+		return vec<1, T, Q>(
+			v.x | scalar);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator|(T scalar, vec<1, T, Q> const& v)
+	{
+		return vec<1, T, Q>(
+			scalar | v.x);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator|(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
+	{
+		return vec<1, T, Q>(
+			v1.x | v2.x);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator^(vec<1, T, Q> const& v, T scalar)
+	{
+		return vec<1, T, Q>(
+			v.x ^ scalar);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator^(T scalar, vec<1, T, Q> const& v)
+	{
+		return vec<1, T, Q>(
+			scalar ^ v.x);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator^(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
+	{
+		return vec<1, T, Q>(
+			v1.x ^ v2.x);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator<<(vec<1, T, Q> const& v, T scalar)
+	{
+		return vec<1, T, Q>(
+			static_cast<T>(v.x << scalar));
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator<<(T scalar, vec<1, T, Q> const& v)
+	{
+		return vec<1, T, Q>(
+			static_cast<T>(scalar << v.x));
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator<<(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
+	{
+		return vec<1, T, Q>(
+			static_cast<T>(v1.x << v2.x));
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator>>(vec<1, T, Q> const& v, T scalar)
+	{
+		return vec<1, T, Q>(
+			static_cast<T>(v.x >> scalar));
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator>>(T scalar, vec<1, T, Q> const& v)
+	{
+		return vec<1, T, Q>(
+			static_cast<T>(scalar >> v.x));
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator>>(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
+	{
+		return vec<1, T, Q>(
+			static_cast<T>(v1.x >> v2.x));
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator~(vec<1, T, Q> const& v)
+	{
+		return vec<1, T, Q>(
+			~v.x);
+	}
+
+	// -- Boolean operators --
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR bool operator==(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
+	{
+		return detail::compute_equal<T, std::numeric_limits<T>::is_iec559>::call(v1.x, v2.x);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR bool operator!=(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
+	{
+		return !(v1 == v2);
+	}
+
+	template<qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, bool, Q> operator&&(vec<1, bool, Q> const& v1, vec<1, bool, Q> const& v2)
+	{
+		return vec<1, bool, Q>(v1.x && v2.x);
+	}
+
+	template<qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, bool, Q> operator||(vec<1, bool, Q> const& v1, vec<1, bool, Q> const& v2)
+	{
+		return vec<1, bool, Q>(v1.x || v2.x);
+	}
+}//namespace glm
+#line 308 "glm/detail/type_vec1.hpp"
+#endif//GLM_EXTERNAL_TEMPLATE
+#line 18 "glm/exponential.hpp"
+// #include "detail/type_vec2.hpp"
 #line 1 "glm/detail/type_vec2.hpp"
 /// @ref core
 /// @file glm/detail/type_vec2.hpp
@@ -10356,6 +10612,4907 @@ namespace glm
 }//namespace glm
 #line 399 "glm/detail/type_vec2.hpp"
 #endif//GLM_EXTERNAL_TEMPLATE
+#line 19 "glm/exponential.hpp"
+// #include "detail/type_vec3.hpp"
+#line 20 "glm/exponential.hpp"
+// #include "detail/type_vec4.hpp"
+#line 21 "glm/exponential.hpp"
+#include <cmath>
+
+namespace glm
+{
+	/// @addtogroup core_func_exponential
+	/// @{
+
+	/// Returns 'base' raised to the power 'exponent'.
+	///
+	/// @param base Floating point value. pow function is defined for input values of 'base' defined in the range (inf-, inf+) in the limit of the type qualifier.
+	/// @param exponent Floating point value representing the 'exponent'.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/pow.xml">GLSL pow man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.2 Exponential Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> pow(vec<L, T, Q> const& base, vec<L, T, Q> const& exponent);
+
+	/// Returns the natural exponentiation of x, i.e., e^x.
+	///
+	/// @param v exp function is defined for input values of v defined in the range (inf-, inf+) in the limit of the type qualifier.
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T Floating-point scalar types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/exp.xml">GLSL exp man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.2 Exponential Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> exp(vec<L, T, Q> const& v);
+
+	/// Returns the natural logarithm of v, i.e.,
+	/// returns the value y which satisfies the equation x = e^y.
+	/// Results are undefined if v <= 0.
+	///
+	/// @param v log function is defined for input values of v defined in the range (0, inf+) in the limit of the type qualifier.
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T Floating-point scalar types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/log.xml">GLSL log man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.2 Exponential Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> log(vec<L, T, Q> const& v);
+
+	/// Returns 2 raised to the v power.
+	///
+	/// @param v exp2 function is defined for input values of v defined in the range (inf-, inf+) in the limit of the type qualifier.
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T Floating-point scalar types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/exp2.xml">GLSL exp2 man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.2 Exponential Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> exp2(vec<L, T, Q> const& v);
+
+	/// Returns the base 2 log of x, i.e., returns the value y,
+	/// which satisfies the equation x = 2 ^ y.
+	///
+	/// @param v log2 function is defined for input values of v defined in the range (0, inf+) in the limit of the type qualifier.
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T Floating-point scalar types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/log2.xml">GLSL log2 man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.2 Exponential Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> log2(vec<L, T, Q> const& v);
+
+	/// Returns the positive square root of v.
+	///
+	/// @param v sqrt function is defined for input values of v defined in the range [0, inf+) in the limit of the type qualifier.
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T Floating-point scalar types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/sqrt.xml">GLSL sqrt man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.2 Exponential Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> sqrt(vec<L, T, Q> const& v);
+
+	/// Returns the reciprocal of the positive square root of v.
+	///
+	/// @param v inversesqrt function is defined for input values of v defined in the range [0, inf+) in the limit of the type qualifier.
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T Floating-point scalar types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/inversesqrt.xml">GLSL inversesqrt man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.2 Exponential Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> inversesqrt(vec<L, T, Q> const& v);
+
+	/// @}
+}//namespace glm
+
+// #include "detail/func_exponential.inl"
+#line 1 "glm/detail/func_exponential.inl"
+/// @ref core
+/// @file glm/detail/func_exponential.inl
+
+// #include "../vector_relational.hpp"
+#line 1 "glm/vector_relational.hpp"
+/// @ref core
+/// @file glm/vector_relational.hpp
+///
+/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
+///
+/// @defgroup core_func_vector_relational Vector Relational Functions
+/// @ingroup core
+///
+/// Relational and equality operators (<, <=, >, >=, ==, !=) are defined to
+/// operate on scalars and produce scalar Boolean results. For vector results,
+/// use the following built-in functions.
+///
+/// In all cases, the sizes of all the input and return vectors for any particular
+/// call must match.
+///
+/// Include <glm/vector_relational.hpp> to use these core features.
+///
+/// @see ext_vector_relational
+
+
+
+// #include "detail/qualifier.hpp"
+#line 23 "glm/vector_relational.hpp"
+// #include "detail/setup.hpp"
+#line 24 "glm/vector_relational.hpp"
+
+namespace glm
+{
+	/// @addtogroup core_func_vector_relational
+	/// @{
+
+	/// Returns the component-wise comparison result of x < y.
+	///
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T A floating-point or integer scalar type.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/lessThan.xml">GLSL lessThan man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, bool, Q> lessThan(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
+
+	/// Returns the component-wise comparison of result x <= y.
+	///
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T A floating-point or integer scalar type.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/lessThanEqual.xml">GLSL lessThanEqual man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, bool, Q> lessThanEqual(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
+
+	/// Returns the component-wise comparison of result x > y.
+	///
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T A floating-point or integer scalar type.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/greaterThan.xml">GLSL greaterThan man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, bool, Q> greaterThan(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
+
+	/// Returns the component-wise comparison of result x >= y.
+	///
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T A floating-point or integer scalar type.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/greaterThanEqual.xml">GLSL greaterThanEqual man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, bool, Q> greaterThanEqual(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
+
+	/// Returns the component-wise comparison of result x == y.
+	///
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T A floating-point, integer or bool scalar type.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/equal.xml">GLSL equal man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, bool, Q> equal(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
+
+	/// Returns the component-wise comparison of result x != y.
+	///
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	/// @tparam T A floating-point, integer or bool scalar type.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/notEqual.xml">GLSL notEqual man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, bool, Q> notEqual(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
+
+	/// Returns true if any component of x is true.
+	///
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/any.xml">GLSL any man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
+	template<length_t L, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR bool any(vec<L, bool, Q> const& v);
+
+	/// Returns true if all components of x are true.
+	///
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/all.xml">GLSL all man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
+	template<length_t L, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR bool all(vec<L, bool, Q> const& v);
+
+	/// Returns the component-wise logical complement of x.
+	/// /!\ Because of language incompatibilities between C++ and GLSL, GLM defines the function not but not_ instead.
+	///
+	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/not.xml">GLSL not man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
+	template<length_t L, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, bool, Q> not_(vec<L, bool, Q> const& v);
+
+	/// @}
+}//namespace glm
+
+// #include "detail/func_vector_relational.inl"
+#line 1 "glm/detail/func_vector_relational.inl"
+namespace glm
+{
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, bool, Q> lessThan(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
+	{
+		vec<L, bool, Q> Result(true);
+		for(length_t i = 0; i < L; ++i)
+			Result[i] = x[i] < y[i];
+		return Result;
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, bool, Q> lessThanEqual(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
+	{
+		vec<L, bool, Q> Result(true);
+		for(length_t i = 0; i < L; ++i)
+			Result[i] = x[i] <= y[i];
+		return Result;
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, bool, Q> greaterThan(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
+	{
+		vec<L, bool, Q> Result(true);
+		for(length_t i = 0; i < L; ++i)
+			Result[i] = x[i] > y[i];
+		return Result;
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, bool, Q> greaterThanEqual(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
+	{
+		vec<L, bool, Q> Result(true);
+		for(length_t i = 0; i < L; ++i)
+			Result[i] = x[i] >= y[i];
+		return Result;
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, bool, Q> equal(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
+	{
+		vec<L, bool, Q> Result(true);
+		for(length_t i = 0; i < L; ++i)
+			Result[i] = x[i] == y[i];
+		return Result;
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, bool, Q> notEqual(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
+	{
+		vec<L, bool, Q> Result(true);
+		for(length_t i = 0; i < L; ++i)
+			Result[i] = x[i] != y[i];
+		return Result;
+	}
+
+	template<length_t L, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR bool any(vec<L, bool, Q> const& v)
+	{
+		bool Result = false;
+		for(length_t i = 0; i < L; ++i)
+			Result = Result || v[i];
+		return Result;
+	}
+
+	template<length_t L, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR bool all(vec<L, bool, Q> const& v)
+	{
+		bool Result = true;
+		for(length_t i = 0; i < L; ++i)
+			Result = Result && v[i];
+		return Result;
+	}
+
+	template<length_t L, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, bool, Q> not_(vec<L, bool, Q> const& v)
+	{
+		vec<L, bool, Q> Result(true);
+		for(length_t i = 0; i < L; ++i)
+			Result[i] = !v[i];
+		return Result;
+	}
+}//namespace glm
+
+#if GLM_CONFIG_SIMD == GLM_ENABLE
+// #	include "func_vector_relational_simd.inl"
+#line 1 "glm/detail/func_vector_relational_simd.inl"
+namespace glm{
+namespace detail
+{
+
+}//namespace detail
+}//namespace glm
+#line 87 "glm/detail/func_vector_relational.inl"
+#endif
+#line 122 "glm/vector_relational.hpp"
+#line 5 "glm/detail/func_exponential.inl"
+// #include "_vectorize.hpp"
+#line 1 "glm/detail/_vectorize.hpp"
+
+
+namespace glm{
+namespace detail
+{
+	template<template<length_t L, typename T, qualifier Q> class vec, length_t L, typename R, typename T, qualifier Q>
+	struct functor1{};
+
+	template<template<length_t L, typename T, qualifier Q> class vec, typename R, typename T, qualifier Q>
+	struct functor1<vec, 1, R, T, Q>
+	{
+		GLM_FUNC_QUALIFIER GLM_CONSTEXPR static vec<1, R, Q> call(R (*Func) (T x), vec<1, T, Q> const& v)
+		{
+			return vec<1, R, Q>(Func(v.x));
+		}
+	};
+
+	template<template<length_t L, typename T, qualifier Q> class vec, typename R, typename T, qualifier Q>
+	struct functor1<vec, 2, R, T, Q>
+	{
+		GLM_FUNC_QUALIFIER GLM_CONSTEXPR static vec<2, R, Q> call(R (*Func) (T x), vec<2, T, Q> const& v)
+		{
+			return vec<2, R, Q>(Func(v.x), Func(v.y));
+		}
+	};
+
+	template<template<length_t L, typename T, qualifier Q> class vec, typename R, typename T, qualifier Q>
+	struct functor1<vec, 3, R, T, Q>
+	{
+		GLM_FUNC_QUALIFIER GLM_CONSTEXPR static vec<3, R, Q> call(R (*Func) (T x), vec<3, T, Q> const& v)
+		{
+			return vec<3, R, Q>(Func(v.x), Func(v.y), Func(v.z));
+		}
+	};
+
+	template<template<length_t L, typename T, qualifier Q> class vec, typename R, typename T, qualifier Q>
+	struct functor1<vec, 4, R, T, Q>
+	{
+		GLM_FUNC_QUALIFIER GLM_CONSTEXPR static vec<4, R, Q> call(R (*Func) (T x), vec<4, T, Q> const& v)
+		{
+			return vec<4, R, Q>(Func(v.x), Func(v.y), Func(v.z), Func(v.w));
+		}
+	};
+
+	template<template<length_t L, typename T, qualifier Q> class vec, length_t L, typename T, qualifier Q>
+	struct functor2{};
+
+	template<template<length_t L, typename T, qualifier Q> class vec, typename T, qualifier Q>
+	struct functor2<vec, 1, T, Q>
+	{
+		GLM_FUNC_QUALIFIER static vec<1, T, Q> call(T (*Func) (T x, T y), vec<1, T, Q> const& a, vec<1, T, Q> const& b)
+		{
+			return vec<1, T, Q>(Func(a.x, b.x));
+		}
+	};
+
+	template<template<length_t L, typename T, qualifier Q> class vec, typename T, qualifier Q>
+	struct functor2<vec, 2, T, Q>
+	{
+		GLM_FUNC_QUALIFIER static vec<2, T, Q> call(T (*Func) (T x, T y), vec<2, T, Q> const& a, vec<2, T, Q> const& b)
+		{
+			return vec<2, T, Q>(Func(a.x, b.x), Func(a.y, b.y));
+		}
+	};
+
+	template<template<length_t L, typename T, qualifier Q> class vec, typename T, qualifier Q>
+	struct functor2<vec, 3, T, Q>
+	{
+		GLM_FUNC_QUALIFIER static vec<3, T, Q> call(T (*Func) (T x, T y), vec<3, T, Q> const& a, vec<3, T, Q> const& b)
+		{
+			return vec<3, T, Q>(Func(a.x, b.x), Func(a.y, b.y), Func(a.z, b.z));
+		}
+	};
+
+	template<template<length_t L, typename T, qualifier Q> class vec, typename T, qualifier Q>
+	struct functor2<vec, 4, T, Q>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, T, Q> call(T (*Func) (T x, T y), vec<4, T, Q> const& a, vec<4, T, Q> const& b)
+		{
+			return vec<4, T, Q>(Func(a.x, b.x), Func(a.y, b.y), Func(a.z, b.z), Func(a.w, b.w));
+		}
+	};
+
+	template<template<length_t L, typename T, qualifier Q> class vec, length_t L, typename T, qualifier Q>
+	struct functor2_vec_sca{};
+
+	template<template<length_t L, typename T, qualifier Q> class vec, typename T, qualifier Q>
+	struct functor2_vec_sca<vec, 1, T, Q>
+	{
+		GLM_FUNC_QUALIFIER static vec<1, T, Q> call(T (*Func) (T x, T y), vec<1, T, Q> const& a, T b)
+		{
+			return vec<1, T, Q>(Func(a.x, b));
+		}
+	};
+
+	template<template<length_t L, typename T, qualifier Q> class vec, typename T, qualifier Q>
+	struct functor2_vec_sca<vec, 2, T, Q>
+	{
+		GLM_FUNC_QUALIFIER static vec<2, T, Q> call(T (*Func) (T x, T y), vec<2, T, Q> const& a, T b)
+		{
+			return vec<2, T, Q>(Func(a.x, b), Func(a.y, b));
+		}
+	};
+
+	template<template<length_t L, typename T, qualifier Q> class vec, typename T, qualifier Q>
+	struct functor2_vec_sca<vec, 3, T, Q>
+	{
+		GLM_FUNC_QUALIFIER static vec<3, T, Q> call(T (*Func) (T x, T y), vec<3, T, Q> const& a, T b)
+		{
+			return vec<3, T, Q>(Func(a.x, b), Func(a.y, b), Func(a.z, b));
+		}
+	};
+
+	template<template<length_t L, typename T, qualifier Q> class vec, typename T, qualifier Q>
+	struct functor2_vec_sca<vec, 4, T, Q>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, T, Q> call(T (*Func) (T x, T y), vec<4, T, Q> const& a, T b)
+		{
+			return vec<4, T, Q>(Func(a.x, b), Func(a.y, b), Func(a.z, b), Func(a.w, b));
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q>
+	struct functor2_vec_int {};
+
+	template<typename T, qualifier Q>
+	struct functor2_vec_int<1, T, Q>
+	{
+		GLM_FUNC_QUALIFIER static vec<1, int, Q> call(int (*Func) (T x, int y), vec<1, T, Q> const& a, vec<1, int, Q> const& b)
+		{
+			return vec<1, int, Q>(Func(a.x, b.x));
+		}
+	};
+
+	template<typename T, qualifier Q>
+	struct functor2_vec_int<2, T, Q>
+	{
+		GLM_FUNC_QUALIFIER static vec<2, int, Q> call(int (*Func) (T x, int y), vec<2, T, Q> const& a, vec<2, int, Q> const& b)
+		{
+			return vec<2, int, Q>(Func(a.x, b.x), Func(a.y, b.y));
+		}
+	};
+
+	template<typename T, qualifier Q>
+	struct functor2_vec_int<3, T, Q>
+	{
+		GLM_FUNC_QUALIFIER static vec<3, int, Q> call(int (*Func) (T x, int y), vec<3, T, Q> const& a, vec<3, int, Q> const& b)
+		{
+			return vec<3, int, Q>(Func(a.x, b.x), Func(a.y, b.y), Func(a.z, b.z));
+		}
+	};
+
+	template<typename T, qualifier Q>
+	struct functor2_vec_int<4, T, Q>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, int, Q> call(int (*Func) (T x, int y), vec<4, T, Q> const& a, vec<4, int, Q> const& b)
+		{
+			return vec<4, int, Q>(Func(a.x, b.x), Func(a.y, b.y), Func(a.z, b.z), Func(a.w, b.w));
+		}
+	};
+}//namespace detail
+}//namespace glm
+#line 6 "glm/detail/func_exponential.inl"
+#include <limits>
+#include <cmath>
+#include <cassert>
+
+namespace glm{
+namespace detail
+{
+#	if GLM_HAS_CXX11_STL
+		using std::log2;
+#	else
+		template<typename genType>
+		genType log2(genType Value)
+		{
+			return std::log(Value) * static_cast<genType>(1.4426950408889634073599246810019);
+		}
+#	endif
+
+	template<length_t L, typename T, qualifier Q, bool isFloat, bool Aligned>
+	struct compute_log2
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& v)
+		{
+			GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'log2' only accept floating-point inputs. Include <glm/gtc/integer.hpp> for integer inputs.");
+
+			return detail::functor1<vec, L, T, T, Q>::call(log2, v);
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_sqrt
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
+		{
+			return detail::functor1<vec, L, T, T, Q>::call(std::sqrt, x);
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_inversesqrt
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
+		{
+			return static_cast<T>(1) / sqrt(x);
+		}
+	};
+
+	template<length_t L, bool Aligned>
+	struct compute_inversesqrt<L, float, lowp, Aligned>
+	{
+		GLM_FUNC_QUALIFIER static vec<L, float, lowp> call(vec<L, float, lowp> const& x)
+		{
+			vec<L, float, lowp> tmp(x);
+			vec<L, float, lowp> xhalf(tmp * 0.5f);
+			vec<L, uint, lowp>* p = reinterpret_cast<vec<L, uint, lowp>*>(const_cast<vec<L, float, lowp>*>(&x));
+			vec<L, uint, lowp> i = vec<L, uint, lowp>(0x5f375a86) - (*p >> vec<L, uint, lowp>(1));
+			vec<L, float, lowp>* ptmp = reinterpret_cast<vec<L, float, lowp>*>(&i);
+			tmp = *ptmp;
+			tmp = tmp * (1.5f - xhalf * tmp * tmp);
+			return tmp;
+		}
+	};
+}//namespace detail
+
+	// pow
+	using std::pow;
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> pow(vec<L, T, Q> const& base, vec<L, T, Q> const& exponent)
+	{
+		return detail::functor2<vec, L, T, Q>::call(pow, base, exponent);
+	}
+
+	// exp
+	using std::exp;
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> exp(vec<L, T, Q> const& x)
+	{
+		return detail::functor1<vec, L, T, T, Q>::call(exp, x);
+	}
+
+	// log
+	using std::log;
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> log(vec<L, T, Q> const& x)
+	{
+		return detail::functor1<vec, L, T, T, Q>::call(log, x);
+	}
+
+#   if GLM_HAS_CXX11_STL
+    using std::exp2;
+#   else
+	//exp2, ln2 = 0.69314718055994530941723212145818f
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType exp2(genType x)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'exp2' only accept floating-point inputs");
+
+		return std::exp(static_cast<genType>(0.69314718055994530941723212145818) * x);
+	}
+#   endif
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> exp2(vec<L, T, Q> const& x)
+	{
+		return detail::functor1<vec, L, T, T, Q>::call(exp2, x);
+	}
+
+	// log2, ln2 = 0.69314718055994530941723212145818f
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType log2(genType x)
+	{
+		return log2(vec<1, genType>(x)).x;
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> log2(vec<L, T, Q> const& x)
+	{
+		return detail::compute_log2<L, T, Q, std::numeric_limits<T>::is_iec559, detail::is_aligned<Q>::value>::call(x);
+	}
+
+	// sqrt
+	using std::sqrt;
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> sqrt(vec<L, T, Q> const& x)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'sqrt' only accept floating-point inputs");
+		return detail::compute_sqrt<L, T, Q, detail::is_aligned<Q>::value>::call(x);
+	}
+
+	// inversesqrt
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType inversesqrt(genType x)
+	{
+		return static_cast<genType>(1) / sqrt(x);
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> inversesqrt(vec<L, T, Q> const& x)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'inversesqrt' only accept floating-point inputs");
+		return detail::compute_inversesqrt<L, T, Q, detail::is_aligned<Q>::value>::call(x);
+	}
+}//namespace glm
+
+#if GLM_CONFIG_SIMD == GLM_ENABLE
+// #	include "func_exponential_simd.inl"
+#line 1 "glm/detail/func_exponential_simd.inl"
+/// @ref core
+/// @file glm/detail/func_exponential_simd.inl
+
+// #include "../simd/exponential.h"
+#line 1 "glm/simd/exponential.h"
+/// @ref simd
+/// @file glm/simd/experimental.h
+
+
+
+// #include "platform.h"
+#line 7 "glm/simd/exponential.h"
+
+#if GLM_ARCH & GLM_ARCH_SSE2_BIT
+
+GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec1_sqrt_lowp(glm_f32vec4 x)
+{
+	return _mm_mul_ss(_mm_rsqrt_ss(x), x);
+}
+
+GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_sqrt_lowp(glm_f32vec4 x)
+{
+	return _mm_mul_ps(_mm_rsqrt_ps(x), x);
+}
+
+#endif//GLM_ARCH & GLM_ARCH_SSE2_BIT
+#line 5 "glm/detail/func_exponential_simd.inl"
+
+#if GLM_ARCH & GLM_ARCH_SSE2_BIT
+
+namespace glm{
+namespace detail
+{
+	template<qualifier Q>
+	struct compute_sqrt<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v)
+		{
+			vec<4, float, Q> Result;
+			Result.data = _mm_sqrt_ps(v.data);
+			return Result;
+		}
+	};
+
+#	if GLM_CONFIG_ALIGNED_GENTYPES == GLM_ENABLE
+	template<>
+	struct compute_sqrt<4, float, aligned_lowp, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, aligned_lowp> call(vec<4, float, aligned_lowp> const& v)
+		{
+			vec<4, float, aligned_lowp> Result;
+			Result.data = glm_vec4_sqrt_lowp(v.data);
+			return Result;
+		}
+	};
+#	endif
+}//namespace detail
+}//namespace glm
+
+#endif//GLM_ARCH & GLM_ARCH_SSE2_BIT
+#line 151 "glm/detail/func_exponential.inl"
+#endif
+
+#line 111 "glm/exponential.hpp"
+#line 2 "glm/detail/func_geometric.inl"
+// #include "../common.hpp"
+#line 1 "glm/common.hpp"
+/// @ref core
+/// @file glm/common.hpp
+///
+/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+///
+/// @defgroup core_func_common Common functions
+/// @ingroup core
+///
+/// Provides GLSL common functions
+///
+/// These all operate component-wise. The description is per component.
+///
+/// Include <glm/common.hpp> to use these core features.
+
+
+
+// #include "detail/qualifier.hpp"
+#line 18 "glm/common.hpp"
+// #include "detail/_fixes.hpp"
+#line 1 "glm/detail/_fixes.hpp"
+#include <cmath>
+
+//! Workaround for compatibility with other libraries
+#ifdef max
+#undef max
+#endif
+
+//! Workaround for compatibility with other libraries
+#ifdef min
+#undef min
+#endif
+
+//! Workaround for Android
+#ifdef isnan
+#undef isnan
+#endif
+
+//! Workaround for Android
+#ifdef isinf
+#undef isinf
+#endif
+
+//! Workaround for Chrone Native Client
+#ifdef log2
+#undef log2
+#endif
+
+#line 19 "glm/common.hpp"
+
+namespace glm
+{
+	/// @addtogroup core_func_common
+	/// @{
+
+	/// Returns x if x >= 0; otherwise, it returns -x.
+	///
+	/// @tparam genType floating-point or signed integer; scalar or vector types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/abs.xml">GLSL abs man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType abs(genType x);
+
+	/// Returns x if x >= 0; otherwise, it returns -x.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point or signed integer scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/abs.xml">GLSL abs man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, T, Q> abs(vec<L, T, Q> const& x);
+
+	/// Returns 1.0 if x > 0, 0.0 if x == 0, or -1.0 if x < 0.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/sign.xml">GLSL sign man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> sign(vec<L, T, Q> const& x);
+
+	/// Returns a value equal to the nearest integer that is less then or equal to x.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/floor.xml">GLSL floor man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> floor(vec<L, T, Q> const& x);
+
+	/// Returns a value equal to the nearest integer to x
+	/// whose absolute value is not larger than the absolute value of x.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/trunc.xml">GLSL trunc man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> trunc(vec<L, T, Q> const& x);
+
+	/// Returns a value equal to the nearest integer to x.
+	/// The fraction 0.5 will round in a direction chosen by the
+	/// implementation, presumably the direction that is fastest.
+	/// This includes the possibility that round(x) returns the
+	/// same value as roundEven(x) for all values of x.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/round.xml">GLSL round man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> round(vec<L, T, Q> const& x);
+
+	/// Returns a value equal to the nearest integer to x.
+	/// A fractional part of 0.5 will round toward the nearest even
+	/// integer. (Both 3.5 and 4.5 for x will return 4.0.)
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/roundEven.xml">GLSL roundEven man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	/// @see <a href="http://developer.amd.com/documentation/articles/pages/New-Round-to-Even-Technique.aspx">New round to even technique</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> roundEven(vec<L, T, Q> const& x);
+
+	/// Returns a value equal to the nearest integer
+	/// that is greater than or equal to x.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/ceil.xml">GLSL ceil man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> ceil(vec<L, T, Q> const& x);
+
+	/// Return x - floor(x).
+	///
+	/// @tparam genType Floating-point scalar or vector types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/fract.xml">GLSL fract man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<typename genType>
+	GLM_FUNC_DECL genType fract(genType x);
+
+	/// Return x - floor(x).
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/fract.xml">GLSL fract man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> fract(vec<L, T, Q> const& x);
+
+	template<typename genType>
+	GLM_FUNC_DECL genType mod(genType x, genType y);
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> mod(vec<L, T, Q> const& x, T y);
+
+	/// Modulus. Returns x - y * floor(x / y)
+	/// for each component in x using the floating point value y.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point scalar types, include glm/gtc/integer for integer scalar types support
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/mod.xml">GLSL mod man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> mod(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
+
+	/// Returns the fractional part of x and sets i to the integer
+	/// part (as a whole number floating point value). Both the
+	/// return value and the output parameter will have the same
+	/// sign as x.
+	///
+	/// @tparam genType Floating-point scalar or vector types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/modf.xml">GLSL modf man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<typename genType>
+	GLM_FUNC_DECL genType modf(genType x, genType& i);
+
+	/// Returns y if y < x; otherwise, it returns x.
+	///
+	/// @tparam genType Floating-point or integer; scalar or vector types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/min.xml">GLSL min man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType min(genType x, genType y);
+
+	/// Returns y if y < x; otherwise, it returns x.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point or integer scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/min.xml">GLSL min man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, T, Q> min(vec<L, T, Q> const& x, T y);
+
+	/// Returns y if y < x; otherwise, it returns x.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point or integer scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/min.xml">GLSL min man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, T, Q> min(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
+
+	/// Returns y if x < y; otherwise, it returns x.
+	///
+	/// @tparam genType Floating-point or integer; scalar or vector types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/max.xml">GLSL max man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType max(genType x, genType y);
+
+	/// Returns y if x < y; otherwise, it returns x.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point or integer scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/max.xml">GLSL max man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, T, Q> max(vec<L, T, Q> const& x, T y);
+
+	/// Returns y if x < y; otherwise, it returns x.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point or integer scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/max.xml">GLSL max man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, T, Q> max(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
+
+	/// Returns min(max(x, minVal), maxVal) for each component in x
+	/// using the floating-point values minVal and maxVal.
+	///
+	/// @tparam genType Floating-point or integer; scalar or vector types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/clamp.xml">GLSL clamp man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType clamp(genType x, genType minVal, genType maxVal);
+
+	/// Returns min(max(x, minVal), maxVal) for each component in x
+	/// using the floating-point values minVal and maxVal.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point or integer scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/clamp.xml">GLSL clamp man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, T, Q> clamp(vec<L, T, Q> const& x, T minVal, T maxVal);
+
+	/// Returns min(max(x, minVal), maxVal) for each component in x
+	/// using the floating-point values minVal and maxVal.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point or integer scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/clamp.xml">GLSL clamp man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, T, Q> clamp(vec<L, T, Q> const& x, vec<L, T, Q> const& minVal, vec<L, T, Q> const& maxVal);
+
+	/// If genTypeU is a floating scalar or vector:
+	/// Returns x * (1.0 - a) + y * a, i.e., the linear blend of
+	/// x and y using the floating-point value a.
+	/// The value for a is not restricted to the range [0, 1].
+	///
+	/// If genTypeU is a boolean scalar or vector:
+	/// Selects which vector each returned component comes
+	/// from. For a component of 'a' that is false, the
+	/// corresponding component of 'x' is returned. For a
+	/// component of 'a' that is true, the corresponding
+	/// component of 'y' is returned. Components of 'x' and 'y' that
+	/// are not selected are allowed to be invalid floating point
+	/// values and will have no effect on the results. Thus, this
+	/// provides different functionality than
+	/// genType mix(genType x, genType y, genType(a))
+	/// where a is a Boolean vector.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/mix.xml">GLSL mix man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	///
+	/// @param[in]  x Value to interpolate.
+	/// @param[in]  y Value to interpolate.
+	/// @param[in]  a Interpolant.
+	///
+	/// @tparam	genTypeT Floating point scalar or vector.
+	/// @tparam genTypeU Floating point or boolean scalar or vector. It can't be a vector if it is the length of genTypeT.
+	///
+	/// @code
+	/// #include <glm/glm.hpp>
+	/// ...
+	/// float a;
+	/// bool b;
+	/// glm::dvec3 e;
+	/// glm::dvec3 f;
+	/// glm::vec4 g;
+	/// glm::vec4 h;
+	/// ...
+	/// glm::vec4 r = glm::mix(g, h, a); // Interpolate with a floating-point scalar two vectors.
+	/// glm::vec4 s = glm::mix(g, h, b); // Returns g or h;
+	/// glm::dvec3 t = glm::mix(e, f, a); // Types of the third parameter is not required to match with the first and the second.
+	/// glm::vec4 u = glm::mix(g, h, r); // Interpolations can be perform per component with a vector for the last parameter.
+	/// @endcode
+	template<typename genTypeT, typename genTypeU>
+	GLM_FUNC_DECL genTypeT mix(genTypeT x, genTypeT y, genTypeU a);
+
+	template<length_t L, typename T, typename U, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> mix(vec<L, T, Q> const& x, vec<L, T, Q> const& y, vec<L, U, Q> const& a);
+
+	template<length_t L, typename T, typename U, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> mix(vec<L, T, Q> const& x, vec<L, T, Q> const& y, U a);
+
+	/// Returns 0.0 if x < edge, otherwise it returns 1.0 for each component of a genType.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/step.xml">GLSL step man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<typename genType>
+	GLM_FUNC_DECL genType step(genType edge, genType x);
+
+	/// Returns 0.0 if x < edge, otherwise it returns 1.0.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/step.xml">GLSL step man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> step(T edge, vec<L, T, Q> const& x);
+
+	/// Returns 0.0 if x < edge, otherwise it returns 1.0.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/step.xml">GLSL step man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> step(vec<L, T, Q> const& edge, vec<L, T, Q> const& x);
+
+	/// Returns 0.0 if x <= edge0 and 1.0 if x >= edge1 and
+	/// performs smooth Hermite interpolation between 0 and 1
+	/// when edge0 < x < edge1. This is useful in cases where
+	/// you would want a threshold function with a smooth
+	/// transition. This is equivalent to:
+	/// genType t;
+	/// t = clamp ((x - edge0) / (edge1 - edge0), 0, 1);
+	/// return t * t * (3 - 2 * t);
+	/// Results are undefined if edge0 >= edge1.
+	///
+	/// @tparam genType Floating-point scalar or vector types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/smoothstep.xml">GLSL smoothstep man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<typename genType>
+	GLM_FUNC_DECL genType smoothstep(genType edge0, genType edge1, genType x);
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> smoothstep(T edge0, T edge1, vec<L, T, Q> const& x);
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> smoothstep(vec<L, T, Q> const& edge0, vec<L, T, Q> const& edge1, vec<L, T, Q> const& x);
+
+	/// Returns true if x holds a NaN (not a number)
+	/// representation in the underlying implementation's set of
+	/// floating point representations. Returns false otherwise,
+	/// including for implementations with no NaN
+	/// representations.
+	///
+	/// /!\ When using compiler fast math, this function may fail.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/isnan.xml">GLSL isnan man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, bool, Q> isnan(vec<L, T, Q> const& x);
+
+	/// Returns true if x holds a positive infinity or negative
+	/// infinity representation in the underlying implementation's
+	/// set of floating point representations. Returns false
+	/// otherwise, including for implementations with no infinity
+	/// representations.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam T Floating-point scalar types
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/isinf.xml">GLSL isinf man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, bool, Q> isinf(vec<L, T, Q> const& x);
+
+	/// Returns a signed integer value representing
+	/// the encoding of a floating-point value. The floating-point
+	/// value's bit-level representation is preserved.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/floatBitsToInt.xml">GLSL floatBitsToInt man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	GLM_FUNC_DECL int floatBitsToInt(float const& v);
+
+	/// Returns a signed integer value representing
+	/// the encoding of a floating-point value. The floatingpoint
+	/// value's bit-level representation is preserved.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/floatBitsToInt.xml">GLSL floatBitsToInt man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, qualifier Q>
+	GLM_FUNC_DECL vec<L, int, Q> floatBitsToInt(vec<L, float, Q> const& v);
+
+	/// Returns a unsigned integer value representing
+	/// the encoding of a floating-point value. The floatingpoint
+	/// value's bit-level representation is preserved.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/floatBitsToUint.xml">GLSL floatBitsToUint man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	GLM_FUNC_DECL uint floatBitsToUint(float const& v);
+
+	/// Returns a unsigned integer value representing
+	/// the encoding of a floating-point value. The floatingpoint
+	/// value's bit-level representation is preserved.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/floatBitsToUint.xml">GLSL floatBitsToUint man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, qualifier Q>
+	GLM_FUNC_DECL vec<L, uint, Q> floatBitsToUint(vec<L, float, Q> const& v);
+
+	/// Returns a floating-point value corresponding to a signed
+	/// integer encoding of a floating-point value.
+	/// If an inf or NaN is passed in, it will not signal, and the
+	/// resulting floating point value is unspecified. Otherwise,
+	/// the bit-level representation is preserved.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/intBitsToFloat.xml">GLSL intBitsToFloat man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	GLM_FUNC_DECL float intBitsToFloat(int const& v);
+
+	/// Returns a floating-point value corresponding to a signed
+	/// integer encoding of a floating-point value.
+	/// If an inf or NaN is passed in, it will not signal, and the
+	/// resulting floating point value is unspecified. Otherwise,
+	/// the bit-level representation is preserved.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/intBitsToFloat.xml">GLSL intBitsToFloat man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, qualifier Q>
+	GLM_FUNC_DECL vec<L, float, Q> intBitsToFloat(vec<L, int, Q> const& v);
+
+	/// Returns a floating-point value corresponding to a
+	/// unsigned integer encoding of a floating-point value.
+	/// If an inf or NaN is passed in, it will not signal, and the
+	/// resulting floating point value is unspecified. Otherwise,
+	/// the bit-level representation is preserved.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/uintBitsToFloat.xml">GLSL uintBitsToFloat man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	GLM_FUNC_DECL float uintBitsToFloat(uint const& v);
+
+	/// Returns a floating-point value corresponding to a
+	/// unsigned integer encoding of a floating-point value.
+	/// If an inf or NaN is passed in, it will not signal, and the
+	/// resulting floating point value is unspecified. Otherwise,
+	/// the bit-level representation is preserved.
+	///
+	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
+	/// @tparam Q Value from qualifier enum
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/uintBitsToFloat.xml">GLSL uintBitsToFloat man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<length_t L, qualifier Q>
+	GLM_FUNC_DECL vec<L, float, Q> uintBitsToFloat(vec<L, uint, Q> const& v);
+
+	/// Computes and returns a * b + c.
+	///
+	/// @tparam genType Floating-point scalar or vector types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/fma.xml">GLSL fma man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<typename genType>
+	GLM_FUNC_DECL genType fma(genType const& a, genType const& b, genType const& c);
+
+	/// Splits x into a floating-point significand in the range
+	/// [0.5, 1.0) and an integral exponent of two, such that:
+	/// x = significand * exp(2, exponent)
+	///
+	/// The significand is returned by the function and the
+	/// exponent is returned in the parameter exp. For a
+	/// floating-point value of zero, the significant and exponent
+	/// are both zero. For a floating-point value that is an
+	/// infinity or is not a number, the results are undefined.
+	///
+	/// @tparam genType Floating-point scalar or vector types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/frexp.xml">GLSL frexp man page</a>
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<typename genType>
+	GLM_FUNC_DECL genType frexp(genType x, int& exp);
+	
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> frexp(vec<L, T, Q> const& v, vec<L, int, Q>& exp);
+
+	/// Builds a floating-point number from x and the
+	/// corresponding integral exponent of two in exp, returning:
+	/// significand * exp(2, exponent)
+	///
+	/// If this product is too large to be represented in the
+	/// floating-point type, the result is undefined.
+	///
+	/// @tparam genType Floating-point scalar or vector types.
+	///
+	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/ldexp.xml">GLSL ldexp man page</a>;
+	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
+	template<typename genType>
+	GLM_FUNC_DECL genType ldexp(genType const& x, int const& exp);
+	
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_DECL vec<L, T, Q> ldexp(vec<L, T, Q> const& v, vec<L, int, Q> const& exp);
+
+	/// @}
+}//namespace glm
+
+// #include "detail/func_common.inl"
+#line 1 "glm/detail/func_common.inl"
+/// @ref core
+/// @file glm/detail/func_common.inl
+
+// #include "../vector_relational.hpp"
+#line 5 "glm/detail/func_common.inl"
+// #include "compute_common.hpp"
+#line 1 "glm/detail/compute_common.hpp"
+
+
+// #include "setup.hpp"
+#line 4 "glm/detail/compute_common.hpp"
+#include <limits>
+
+namespace glm{
+namespace detail
+{
+	template<typename genFIType, bool /*signed*/>
+	struct compute_abs
+	{};
+
+	template<typename genFIType>
+	struct compute_abs<genFIType, true>
+	{
+		GLM_FUNC_QUALIFIER GLM_CONSTEXPR static genFIType call(genFIType x)
+		{
+			GLM_STATIC_ASSERT(
+				std::numeric_limits<genFIType>::is_iec559 || std::numeric_limits<genFIType>::is_signed,
+				"'abs' only accept floating-point and integer scalar or vector inputs");
+
+			return x >= genFIType(0) ? x : -x;
+			// TODO, perf comp with: *(((int *) &x) + 1) &= 0x7fffffff;
+		}
+	};
+
+#if GLM_COMPILER & GLM_COMPILER_CUDA
+	template<>
+	struct compute_abs<float, true>
+	{
+		GLM_FUNC_QUALIFIER GLM_CONSTEXPR static float call(float x)
+		{
+			return fabsf(x);
+		}
+	};
+#endif
+
+	template<typename genFIType>
+	struct compute_abs<genFIType, false>
+	{
+		GLM_FUNC_QUALIFIER GLM_CONSTEXPR static genFIType call(genFIType x)
+		{
+			GLM_STATIC_ASSERT(
+				(!std::numeric_limits<genFIType>::is_signed && std::numeric_limits<genFIType>::is_integer),
+				"'abs' only accept floating-point and integer scalar or vector inputs");
+			return x;
+		}
+	};
+}//namespace detail
+}//namespace glm
+#line 6 "glm/detail/func_common.inl"
+// #include "type_vec1.hpp"
+#line 7 "glm/detail/func_common.inl"
+// #include "type_vec2.hpp"
+#line 8 "glm/detail/func_common.inl"
+// #include "type_vec3.hpp"
+#line 9 "glm/detail/func_common.inl"
+// #include "type_vec4.hpp"
+#line 10 "glm/detail/func_common.inl"
+// #include "_vectorize.hpp"
+#line 11 "glm/detail/func_common.inl"
+#include <limits>
+
+namespace glm
+{
+	// min
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType min(genType x, genType y)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559 || std::numeric_limits<genType>::is_integer, "'min' only accept floating-point or integer inputs");
+		return (y < x) ? y : x;
+	}
+
+	// max
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType max(genType x, genType y)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559 || std::numeric_limits<genType>::is_integer, "'max' only accept floating-point or integer inputs");
+
+		return (x < y) ? y : x;
+	}
+
+	// abs
+	template<>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR int abs(int x)
+	{
+		int const y = x >> (sizeof(int) * 8 - 1);
+		return (x ^ y) - y;
+	}
+
+	// round
+#	if GLM_HAS_CXX11_STL
+		using ::std::round;
+#	else
+		template<typename genType>
+		GLM_FUNC_QUALIFIER genType round(genType x)
+		{
+			GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'round' only accept floating-point inputs");
+
+			return x < static_cast<genType>(0) ? static_cast<genType>(int(x - static_cast<genType>(0.5))) : static_cast<genType>(int(x + static_cast<genType>(0.5)));
+		}
+#	endif
+
+	// trunc
+#	if GLM_HAS_CXX11_STL
+		using ::std::trunc;
+#	else
+		template<typename genType>
+		GLM_FUNC_QUALIFIER genType trunc(genType x)
+		{
+			GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'trunc' only accept floating-point inputs");
+
+			return x < static_cast<genType>(0) ? -std::floor(-x) : std::floor(x);
+		}
+#	endif
+
+}//namespace glm
+
+namespace glm{
+namespace detail
+{
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_abs_vector
+	{
+		GLM_FUNC_QUALIFIER GLM_CONSTEXPR static vec<L, T, Q> call(vec<L, T, Q> const& x)
+		{
+			return detail::functor1<vec, L, T, T, Q>::call(abs, x);
+		}
+	};
+
+	template<length_t L, typename T, typename U, qualifier Q, bool Aligned>
+	struct compute_mix_vector
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x, vec<L, T, Q> const& y, vec<L, U, Q> const& a)
+		{
+			GLM_STATIC_ASSERT(std::numeric_limits<U>::is_iec559 || GLM_CONFIG_UNRESTRICTED_GENTYPE, "'mix' only accept floating-point inputs for the interpolator a");
+
+			return vec<L, T, Q>(vec<L, U, Q>(x) * (static_cast<U>(1) - a) + vec<L, U, Q>(y) * a);
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_mix_vector<L, T, bool, Q, Aligned>
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x, vec<L, T, Q> const& y, vec<L, bool, Q> const& a)
+		{
+			vec<L, T, Q> Result;
+			for(length_t i = 0; i < x.length(); ++i)
+				Result[i] = a[i] ? y[i] : x[i];
+			return Result;
+		}
+	};
+
+	template<length_t L, typename T, typename U, qualifier Q, bool Aligned>
+	struct compute_mix_scalar
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x, vec<L, T, Q> const& y, U const& a)
+		{
+			GLM_STATIC_ASSERT(std::numeric_limits<U>::is_iec559 || GLM_CONFIG_UNRESTRICTED_GENTYPE, "'mix' only accept floating-point inputs for the interpolator a");
+
+			return vec<L, T, Q>(vec<L, U, Q>(x) * (static_cast<U>(1) - a) + vec<L, U, Q>(y) * a);
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_mix_scalar<L, T, bool, Q, Aligned>
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x, vec<L, T, Q> const& y, bool const& a)
+		{
+			return a ? y : x;
+		}
+	};
+
+	template<typename T, typename U>
+	struct compute_mix
+	{
+		GLM_FUNC_QUALIFIER static T call(T const& x, T const& y, U const& a)
+		{
+			GLM_STATIC_ASSERT(std::numeric_limits<U>::is_iec559 || GLM_CONFIG_UNRESTRICTED_GENTYPE, "'mix' only accept floating-point inputs for the interpolator a");
+
+			return static_cast<T>(static_cast<U>(x) * (static_cast<U>(1) - a) + static_cast<U>(y) * a);
+		}
+	};
+
+	template<typename T>
+	struct compute_mix<T, bool>
+	{
+		GLM_FUNC_QUALIFIER static T call(T const& x, T const& y, bool const& a)
+		{
+			return a ? y : x;
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool isFloat, bool Aligned>
+	struct compute_sign
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
+		{
+			return vec<L, T, Q>(glm::lessThan(vec<L, T, Q>(0), x)) - vec<L, T, Q>(glm::lessThan(x, vec<L, T, Q>(0)));
+		}
+	};
+
+#	if GLM_ARCH == GLM_ARCH_X86
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_sign<L, T, Q, false, Aligned>
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
+		{
+			T const Shift(static_cast<T>(sizeof(T) * 8 - 1));
+			vec<L, T, Q> const y(vec<L, typename detail::make_unsigned<T>::type, Q>(-x) >> typename detail::make_unsigned<T>::type(Shift));
+
+			return (x >> Shift) | y;
+		}
+	};
+#	endif
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_floor
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
+		{
+			return detail::functor1<vec, L, T, T, Q>::call(std::floor, x);
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_ceil
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
+		{
+			return detail::functor1<vec, L, T, T, Q>::call(std::ceil, x);
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_fract
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
+		{
+			return x - floor(x);
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_trunc
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
+		{
+			return detail::functor1<vec, L, T, T, Q>::call(trunc, x);
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_round
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
+		{
+			return detail::functor1<vec, L, T, T, Q>::call(round, x);
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_mod
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& a, vec<L, T, Q> const& b)
+		{
+			GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'mod' only accept floating-point inputs. Include <glm/gtc/integer.hpp> for integer inputs.");
+			return a - b * floor(a / b);
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_min_vector
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
+		{
+			return detail::functor2<vec, L, T, Q>::call(min, x, y);
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_max_vector
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
+		{
+			return detail::functor2<vec, L, T, Q>::call(max, x, y);
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_clamp_vector
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x, vec<L, T, Q> const& minVal, vec<L, T, Q> const& maxVal)
+		{
+			return min(max(x, minVal), maxVal);
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_step_vector
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& edge, vec<L, T, Q> const& x)
+		{
+			return mix(vec<L, T, Q>(1), vec<L, T, Q>(0), glm::lessThan(x, edge));
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_smoothstep_vector
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& edge0, vec<L, T, Q> const& edge1, vec<L, T, Q> const& x)
+		{
+			GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559 || GLM_CONFIG_UNRESTRICTED_GENTYPE, "'smoothstep' only accept floating-point inputs");
+			vec<L, T, Q> const tmp(clamp((x - edge0) / (edge1 - edge0), static_cast<T>(0), static_cast<T>(1)));
+			return tmp * tmp * (static_cast<T>(3) - static_cast<T>(2) * tmp);
+		}
+	};
+}//namespace detail
+
+	template<typename genFIType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genFIType abs(genFIType x)
+	{
+		return detail::compute_abs<genFIType, std::numeric_limits<genFIType>::is_signed>::call(x);
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, T, Q> abs(vec<L, T, Q> const& x)
+	{
+		return detail::compute_abs_vector<L, T, Q, detail::is_aligned<Q>::value>::call(x);
+	}
+
+	// sign
+	// fast and works for any type
+	template<typename genFIType>
+	GLM_FUNC_QUALIFIER genFIType sign(genFIType x)
+	{
+		GLM_STATIC_ASSERT(
+			std::numeric_limits<genFIType>::is_iec559 || (std::numeric_limits<genFIType>::is_signed && std::numeric_limits<genFIType>::is_integer),
+			"'sign' only accept signed inputs");
+
+		return detail::compute_sign<1, genFIType, defaultp,
+                                    std::numeric_limits<genFIType>::is_iec559, detail::is_aligned<highp>::value>::call(vec<1, genFIType>(x)).x;
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> sign(vec<L, T, Q> const& x)
+	{
+		GLM_STATIC_ASSERT(
+			std::numeric_limits<T>::is_iec559 || (std::numeric_limits<T>::is_signed && std::numeric_limits<T>::is_integer),
+			"'sign' only accept signed inputs");
+
+		return detail::compute_sign<L, T, Q, std::numeric_limits<T>::is_iec559, detail::is_aligned<Q>::value>::call(x);
+	}
+
+	// floor
+	using ::std::floor;
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> floor(vec<L, T, Q> const& x)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'floor' only accept floating-point inputs.");
+		return detail::compute_floor<L, T, Q, detail::is_aligned<Q>::value>::call(x);
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> trunc(vec<L, T, Q> const& x)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'trunc' only accept floating-point inputs");
+		return detail::compute_trunc<L, T, Q, detail::is_aligned<Q>::value>::call(x);
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> round(vec<L, T, Q> const& x)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'round' only accept floating-point inputs");
+		return detail::compute_round<L, T, Q, detail::is_aligned<Q>::value>::call(x);
+	}
+
+/*
+	// roundEven
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType roundEven(genType const& x)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'roundEven' only accept floating-point inputs");
+
+		return genType(int(x + genType(int(x) % 2)));
+	}
+*/
+
+	// roundEven
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType roundEven(genType x)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'roundEven' only accept floating-point inputs");
+
+		int Integer = static_cast<int>(x);
+		genType IntegerPart = static_cast<genType>(Integer);
+		genType FractionalPart = fract(x);
+
+		if(FractionalPart > static_cast<genType>(0.5) || FractionalPart < static_cast<genType>(0.5))
+		{
+			return round(x);
+		}
+		else if((Integer % 2) == 0)
+		{
+			return IntegerPart;
+		}
+		else if(x <= static_cast<genType>(0)) // Work around...
+		{
+			return IntegerPart - static_cast<genType>(1);
+		}
+		else
+		{
+			return IntegerPart + static_cast<genType>(1);
+		}
+		//else // Bug on MinGW 4.5.2
+		//{
+		//	return mix(IntegerPart + genType(-1), IntegerPart + genType(1), x <= genType(0));
+		//}
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> roundEven(vec<L, T, Q> const& x)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'roundEven' only accept floating-point inputs");
+		return detail::functor1<vec, L, T, T, Q>::call(roundEven, x);
+	}
+
+	// ceil
+	using ::std::ceil;
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> ceil(vec<L, T, Q> const& x)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'ceil' only accept floating-point inputs");
+		return detail::compute_ceil<L, T, Q, detail::is_aligned<Q>::value>::call(x);
+	}
+
+	// fract
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType fract(genType x)
+	{
+		return fract(vec<1, genType>(x)).x;
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> fract(vec<L, T, Q> const& x)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'fract' only accept floating-point inputs");
+		return detail::compute_fract<L, T, Q, detail::is_aligned<Q>::value>::call(x);
+	}
+
+	// mod
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType mod(genType x, genType y)
+	{
+#		if GLM_COMPILER & GLM_COMPILER_CUDA
+			// Another Cuda compiler bug https://github.com/g-truc/glm/issues/530
+			vec<1, genType, defaultp> Result(mod(vec<1, genType, defaultp>(x), y));
+			return Result.x;
+#		else
+			return mod(vec<1, genType, defaultp>(x), y).x;
+#		endif
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> mod(vec<L, T, Q> const& x, T y)
+	{
+		return detail::compute_mod<L, T, Q, detail::is_aligned<Q>::value>::call(x, vec<L, T, Q>(y));
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> mod(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
+	{
+		return detail::compute_mod<L, T, Q, detail::is_aligned<Q>::value>::call(x, y);
+	}
+
+	// modf
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType modf(genType x, genType & i)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'modf' only accept floating-point inputs");
+		return std::modf(x, &i);
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<1, T, Q> modf(vec<1, T, Q> const& x, vec<1, T, Q> & i)
+	{
+		return vec<1, T, Q>(
+			modf(x.x, i.x));
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<2, T, Q> modf(vec<2, T, Q> const& x, vec<2, T, Q> & i)
+	{
+		return vec<2, T, Q>(
+			modf(x.x, i.x),
+			modf(x.y, i.y));
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<3, T, Q> modf(vec<3, T, Q> const& x, vec<3, T, Q> & i)
+	{
+		return vec<3, T, Q>(
+			modf(x.x, i.x),
+			modf(x.y, i.y),
+			modf(x.z, i.z));
+	}
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<4, T, Q> modf(vec<4, T, Q> const& x, vec<4, T, Q> & i)
+	{
+		return vec<4, T, Q>(
+			modf(x.x, i.x),
+			modf(x.y, i.y),
+			modf(x.z, i.z),
+			modf(x.w, i.w));
+	}
+
+	//// Only valid if (INT_MIN <= x-y <= INT_MAX)
+	//// min(x,y)
+	//r = y + ((x - y) & ((x - y) >> (sizeof(int) *
+	//CHAR_BIT - 1)));
+	//// max(x,y)
+	//r = x - ((x - y) & ((x - y) >> (sizeof(int) *
+	//CHAR_BIT - 1)));
+
+	// min
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, T, Q> min(vec<L, T, Q> const& a, T b)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559 || std::numeric_limits<T>::is_integer, "'min' only accept floating-point or integer inputs");
+		return detail::compute_min_vector<L, T, Q, detail::is_aligned<Q>::value>::call(a, vec<L, T, Q>(b));
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, T, Q> min(vec<L, T, Q> const& a, vec<L, T, Q> const& b)
+	{
+		return detail::compute_min_vector<L, T, Q, detail::is_aligned<Q>::value>::call(a, b);
+	}
+
+	// max
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, T, Q> max(vec<L, T, Q> const& a, T b)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559 || std::numeric_limits<T>::is_integer, "'max' only accept floating-point or integer inputs");
+		return detail::compute_max_vector<L, T, Q, detail::is_aligned<Q>::value>::call(a, vec<L, T, Q>(b));
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, T, Q> max(vec<L, T, Q> const& a, vec<L, T, Q> const& b)
+	{
+		return detail::compute_max_vector<L, T, Q, detail::is_aligned<Q>::value>::call(a, b);
+	}
+
+	// clamp
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType clamp(genType x, genType minVal, genType maxVal)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559 || std::numeric_limits<genType>::is_integer, "'clamp' only accept floating-point or integer inputs");
+		return min(max(x, minVal), maxVal);
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, T, Q> clamp(vec<L, T, Q> const& x, T minVal, T maxVal)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559 || std::numeric_limits<T>::is_integer, "'clamp' only accept floating-point or integer inputs");
+		return detail::compute_clamp_vector<L, T, Q, detail::is_aligned<Q>::value>::call(x, vec<L, T, Q>(minVal), vec<L, T, Q>(maxVal));
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, T, Q> clamp(vec<L, T, Q> const& x, vec<L, T, Q> const& minVal, vec<L, T, Q> const& maxVal)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559 || std::numeric_limits<T>::is_integer, "'clamp' only accept floating-point or integer inputs");
+		return detail::compute_clamp_vector<L, T, Q, detail::is_aligned<Q>::value>::call(x, minVal, maxVal);
+	}
+
+	template<typename genTypeT, typename genTypeU>
+	GLM_FUNC_QUALIFIER genTypeT mix(genTypeT x, genTypeT y, genTypeU a)
+	{
+		return detail::compute_mix<genTypeT, genTypeU>::call(x, y, a);
+	}
+
+	template<length_t L, typename T, typename U, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> mix(vec<L, T, Q> const& x, vec<L, T, Q> const& y, U a)
+	{
+		return detail::compute_mix_scalar<L, T, U, Q, detail::is_aligned<Q>::value>::call(x, y, a);
+	}
+
+	template<length_t L, typename T, typename U, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> mix(vec<L, T, Q> const& x, vec<L, T, Q> const& y, vec<L, U, Q> const& a)
+	{
+		return detail::compute_mix_vector<L, T, U, Q, detail::is_aligned<Q>::value>::call(x, y, a);
+	}
+
+	// step
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType step(genType edge, genType x)
+	{
+		return mix(static_cast<genType>(1), static_cast<genType>(0), x < edge);
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> step(T edge, vec<L, T, Q> const& x)
+	{
+		return detail::compute_step_vector<L, T, Q, detail::is_aligned<Q>::value>::call(vec<L, T, Q>(edge), x);
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> step(vec<L, T, Q> const& edge, vec<L, T, Q> const& x)
+	{
+		return detail::compute_step_vector<L, T, Q, detail::is_aligned<Q>::value>::call(edge, x);
+	}
+
+	// smoothstep
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType smoothstep(genType edge0, genType edge1, genType x)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559 || GLM_CONFIG_UNRESTRICTED_GENTYPE, "'smoothstep' only accept floating-point inputs");
+
+		genType const tmp(clamp((x - edge0) / (edge1 - edge0), genType(0), genType(1)));
+		return tmp * tmp * (genType(3) - genType(2) * tmp);
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> smoothstep(T edge0, T edge1, vec<L, T, Q> const& x)
+	{
+		return detail::compute_smoothstep_vector<L, T, Q, detail::is_aligned<Q>::value>::call(vec<L, T, Q>(edge0), vec<L, T, Q>(edge1), x);
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> smoothstep(vec<L, T, Q> const& edge0, vec<L, T, Q> const& edge1, vec<L, T, Q> const& x)
+	{
+		return detail::compute_smoothstep_vector<L, T, Q, detail::is_aligned<Q>::value>::call(edge0, edge1, x);
+	}
+
+#	if GLM_HAS_CXX11_STL
+		using std::isnan;
+#	else
+		template<typename genType>
+		GLM_FUNC_QUALIFIER bool isnan(genType x)
+		{
+			GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'isnan' only accept floating-point inputs");
+
+#			if GLM_HAS_CXX11_STL
+				return std::isnan(x);
+#			elif GLM_COMPILER & GLM_COMPILER_VC
+				return _isnan(x) != 0;
+#			elif GLM_COMPILER & GLM_COMPILER_INTEL
+#				if GLM_PLATFORM & GLM_PLATFORM_WINDOWS
+					return _isnan(x) != 0;
+#				else
+					return ::isnan(x) != 0;
+#				endif
+#			elif (GLM_COMPILER & (GLM_COMPILER_GCC | GLM_COMPILER_CLANG)) && (GLM_PLATFORM & GLM_PLATFORM_ANDROID) && __cplusplus < 201103L
+				return _isnan(x) != 0;
+#			elif GLM_COMPILER & GLM_COMPILER_CUDA
+				return ::isnan(x) != 0;
+#			else
+				return std::isnan(x);
+#			endif
+		}
+#	endif
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, bool, Q> isnan(vec<L, T, Q> const& v)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'isnan' only accept floating-point inputs");
+
+		vec<L, bool, Q> Result;
+		for (length_t l = 0; l < v.length(); ++l)
+			Result[l] = glm::isnan(v[l]);
+		return Result;
+	}
+
+#	if GLM_HAS_CXX11_STL
+		using std::isinf;
+#	else
+		template<typename genType>
+		GLM_FUNC_QUALIFIER bool isinf(genType x)
+		{
+			GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'isinf' only accept floating-point inputs");
+
+#			if GLM_HAS_CXX11_STL
+				return std::isinf(x);
+#			elif GLM_COMPILER & (GLM_COMPILER_INTEL | GLM_COMPILER_VC)
+#				if(GLM_PLATFORM & GLM_PLATFORM_WINDOWS)
+					return _fpclass(x) == _FPCLASS_NINF || _fpclass(x) == _FPCLASS_PINF;
+#				else
+					return ::isinf(x);
+#				endif
+#			elif GLM_COMPILER & (GLM_COMPILER_GCC | GLM_COMPILER_CLANG)
+#				if(GLM_PLATFORM & GLM_PLATFORM_ANDROID && __cplusplus < 201103L)
+					return _isinf(x) != 0;
+#				else
+					return std::isinf(x);
+#				endif
+#			elif GLM_COMPILER & GLM_COMPILER_CUDA
+				// http://developer.download.nvidia.com/compute/cuda/4_2/rel/toolkit/docs/online/group__CUDA__MATH__DOUBLE_g13431dd2b40b51f9139cbb7f50c18fab.html#g13431dd2b40b51f9139cbb7f50c18fab
+				return ::isinf(double(x)) != 0;
+#			else
+				return std::isinf(x);
+#			endif
+	}
+#	endif
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, bool, Q> isinf(vec<L, T, Q> const& v)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'isinf' only accept floating-point inputs");
+
+		vec<L, bool, Q> Result;
+		for (length_t l = 0; l < v.length(); ++l)
+			Result[l] = glm::isinf(v[l]);
+		return Result;
+	}
+
+	GLM_FUNC_QUALIFIER int floatBitsToInt(float const& v)
+	{
+		union
+		{
+			float in;
+			int out;
+		} u;
+
+		u.in = v;
+
+		return u.out;
+	}
+
+	template<length_t L, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, int, Q> floatBitsToInt(vec<L, float, Q> const& v)
+	{
+		return reinterpret_cast<vec<L, int, Q>&>(const_cast<vec<L, float, Q>&>(v));
+	}
+
+	GLM_FUNC_QUALIFIER uint floatBitsToUint(float const& v)
+	{
+		union
+		{
+			float in;
+			uint out;
+		} u;
+
+		u.in = v;
+
+		return u.out;
+	}
+
+	template<length_t L, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, uint, Q> floatBitsToUint(vec<L, float, Q> const& v)
+	{
+		return reinterpret_cast<vec<L, uint, Q>&>(const_cast<vec<L, float, Q>&>(v));
+	}
+
+	GLM_FUNC_QUALIFIER float intBitsToFloat(int const& v)
+	{
+		union
+		{
+			int in;
+			float out;
+		} u;
+
+		u.in = v;
+
+		return u.out;
+	}
+
+	template<length_t L, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, float, Q> intBitsToFloat(vec<L, int, Q> const& v)
+	{
+		return reinterpret_cast<vec<L, float, Q>&>(const_cast<vec<L, int, Q>&>(v));
+	}
+
+	GLM_FUNC_QUALIFIER float uintBitsToFloat(uint const& v)
+	{
+		union
+		{
+			uint in;
+			float out;
+		} u;
+
+		u.in = v;
+
+		return u.out;
+	}
+
+	template<length_t L, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, float, Q> uintBitsToFloat(vec<L, uint, Q> const& v)
+	{
+		return reinterpret_cast<vec<L, float, Q>&>(const_cast<vec<L, uint, Q>&>(v));
+	}
+
+#	if GLM_HAS_CXX11_STL
+		using std::fma;
+#	else
+		template<typename genType>
+		GLM_FUNC_QUALIFIER genType fma(genType const& a, genType const& b, genType const& c)
+		{
+			return a * b + c;
+		}
+#	endif
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType frexp(genType x, int& exp)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'frexp' only accept floating-point inputs");
+
+		return std::frexp(x, &exp);
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> frexp(vec<L, T, Q> const& v, vec<L, int, Q>& exp)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'frexp' only accept floating-point inputs");
+
+		vec<L, T, Q> Result;
+		for (length_t l = 0; l < v.length(); ++l)
+			Result[l] = std::frexp(v[l], &exp[l]);
+		return Result;
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType ldexp(genType const& x, int const& exp)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'ldexp' only accept floating-point inputs");
+
+		return std::ldexp(x, exp);
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> ldexp(vec<L, T, Q> const& v, vec<L, int, Q> const& exp)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'ldexp' only accept floating-point inputs");
+
+		vec<L, T, Q> Result;
+		for (length_t l = 0; l < v.length(); ++l)
+			Result[l] = std::ldexp(v[l], exp[l]);
+		return Result;
+	}
+}//namespace glm
+
+#if GLM_CONFIG_SIMD == GLM_ENABLE
+// #	include "func_common_simd.inl"
+#line 1 "glm/detail/func_common_simd.inl"
+/// @ref core
+/// @file glm/detail/func_common_simd.inl
+
+#if GLM_ARCH & GLM_ARCH_SSE2_BIT
+
+// #include "../simd/common.h"
+#line 1 "glm/simd/common.h"
+/// @ref simd
+/// @file glm/simd/common.h
+
+
+
+// #include "platform.h"
+#line 7 "glm/simd/common.h"
+
+#if GLM_ARCH & GLM_ARCH_SSE2_BIT
+
+GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_add(glm_f32vec4 a, glm_f32vec4 b)
+{
+	return _mm_add_ps(a, b);
+}
+
+GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec1_add(glm_f32vec4 a, glm_f32vec4 b)
+{
+	return _mm_add_ss(a, b);
+}
+
+GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_sub(glm_f32vec4 a, glm_f32vec4 b)
+{
+	return _mm_sub_ps(a, b);
+}
+
+GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec1_sub(glm_f32vec4 a, glm_f32vec4 b)
+{
+	return _mm_sub_ss(a, b);
+}
+
+GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_mul(glm_f32vec4 a, glm_f32vec4 b)
+{
+	return _mm_mul_ps(a, b);
+}
+
+GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec1_mul(glm_f32vec4 a, glm_f32vec4 b)
+{
+	return _mm_mul_ss(a, b);
+}
+
+GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_div(glm_f32vec4 a, glm_f32vec4 b)
+{
+	return _mm_div_ps(a, b);
+}
+
+GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec1_div(glm_f32vec4 a, glm_f32vec4 b)
+{
+	return _mm_div_ss(a, b);
+}
+
+GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_div_lowp(glm_f32vec4 a, glm_f32vec4 b)
+{
+	return glm_vec4_mul(a, _mm_rcp_ps(b));
+}
+
+GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_swizzle_xyzw(glm_f32vec4 a)
+{
+#	if GLM_ARCH & GLM_ARCH_AVX2_BIT
+		return _mm_permute_ps(a, _MM_SHUFFLE(3, 2, 1, 0));
+#	else
+		return _mm_shuffle_ps(a, a, _MM_SHUFFLE(3, 2, 1, 0));
+#	endif
+}
+
+GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec1_fma(glm_f32vec4 a, glm_f32vec4 b, glm_f32vec4 c)
+{
+#	if (GLM_ARCH & GLM_ARCH_AVX2_BIT) && !(GLM_COMPILER & GLM_COMPILER_CLANG)
+		return _mm_fmadd_ss(a, b, c);
+#	else
+		return _mm_add_ss(_mm_mul_ss(a, b), c);
+#	endif
+}
+
+GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_fma(glm_f32vec4 a, glm_f32vec4 b, glm_f32vec4 c)
+{
+#	if (GLM_ARCH & GLM_ARCH_AVX2_BIT) && !(GLM_COMPILER & GLM_COMPILER_CLANG)
+		return _mm_fmadd_ps(a, b, c);
+#	else
+		return glm_vec4_add(glm_vec4_mul(a, b), c);
+#	endif
+}
+
+GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_abs(glm_f32vec4 x)
+{
+	return _mm_and_ps(x, _mm_castsi128_ps(_mm_set1_epi32(0x7FFFFFFF)));
+}
+
+GLM_FUNC_QUALIFIER glm_ivec4 glm_ivec4_abs(glm_ivec4 x)
+{
+#	if GLM_ARCH & GLM_ARCH_SSSE3_BIT
+		return _mm_sign_epi32(x, x);
+#	else
+		glm_ivec4 const sgn0 = _mm_srai_epi32(x, 31);
+		glm_ivec4 const inv0 = _mm_xor_si128(x, sgn0);
+		glm_ivec4 const sub0 = _mm_sub_epi32(inv0, sgn0);
+		return sub0;
+#	endif
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_sign(glm_vec4 x)
+{
+	glm_vec4 const zro0 = _mm_setzero_ps();
+	glm_vec4 const cmp0 = _mm_cmplt_ps(x, zro0);
+	glm_vec4 const cmp1 = _mm_cmpgt_ps(x, zro0);
+	glm_vec4 const and0 = _mm_and_ps(cmp0, _mm_set1_ps(-1.0f));
+	glm_vec4 const and1 = _mm_and_ps(cmp1, _mm_set1_ps(1.0f));
+	glm_vec4 const or0 = _mm_or_ps(and0, and1);
+	return or0;
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_round(glm_vec4 x)
+{
+#	if GLM_ARCH & GLM_ARCH_SSE41_BIT
+		return _mm_round_ps(x, _MM_FROUND_TO_NEAREST_INT);
+#	else
+		glm_vec4 const sgn0 = _mm_castsi128_ps(_mm_set1_epi32(int(0x80000000)));
+		glm_vec4 const and0 = _mm_and_ps(sgn0, x);
+		glm_vec4 const or0 = _mm_or_ps(and0, _mm_set_ps1(8388608.0f));
+		glm_vec4 const add0 = glm_vec4_add(x, or0);
+		glm_vec4 const sub0 = glm_vec4_sub(add0, or0);
+		return sub0;
+#	endif
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_floor(glm_vec4 x)
+{
+#	if GLM_ARCH & GLM_ARCH_SSE41_BIT
+		return _mm_floor_ps(x);
+#	else
+		glm_vec4 const rnd0 = glm_vec4_round(x);
+		glm_vec4 const cmp0 = _mm_cmplt_ps(x, rnd0);
+		glm_vec4 const and0 = _mm_and_ps(cmp0, _mm_set1_ps(1.0f));
+		glm_vec4 const sub0 = glm_vec4_sub(rnd0, and0);
+		return sub0;
+#	endif
+}
+
+/* trunc TODO
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_trunc(glm_vec4 x)
+{
+	return glm_vec4();
+}
+*/
+
+//roundEven
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_roundEven(glm_vec4 x)
+{
+	glm_vec4 const sgn0 = _mm_castsi128_ps(_mm_set1_epi32(int(0x80000000)));
+	glm_vec4 const and0 = _mm_and_ps(sgn0, x);
+	glm_vec4 const or0 = _mm_or_ps(and0, _mm_set_ps1(8388608.0f));
+	glm_vec4 const add0 = glm_vec4_add(x, or0);
+	glm_vec4 const sub0 = glm_vec4_sub(add0, or0);
+	return sub0;
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_ceil(glm_vec4 x)
+{
+#	if GLM_ARCH & GLM_ARCH_SSE41_BIT
+		return _mm_ceil_ps(x);
+#	else
+		glm_vec4 const rnd0 = glm_vec4_round(x);
+		glm_vec4 const cmp0 = _mm_cmpgt_ps(x, rnd0);
+		glm_vec4 const and0 = _mm_and_ps(cmp0, _mm_set1_ps(1.0f));
+		glm_vec4 const add0 = glm_vec4_add(rnd0, and0);
+		return add0;
+#	endif
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_fract(glm_vec4 x)
+{
+	glm_vec4 const flr0 = glm_vec4_floor(x);
+	glm_vec4 const sub0 = glm_vec4_sub(x, flr0);
+	return sub0;
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_mod(glm_vec4 x, glm_vec4 y)
+{
+	glm_vec4 const div0 = glm_vec4_div(x, y);
+	glm_vec4 const flr0 = glm_vec4_floor(div0);
+	glm_vec4 const mul0 = glm_vec4_mul(y, flr0);
+	glm_vec4 const sub0 = glm_vec4_sub(x, mul0);
+	return sub0;
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_clamp(glm_vec4 v, glm_vec4 minVal, glm_vec4 maxVal)
+{
+	glm_vec4 const min0 = _mm_min_ps(v, maxVal);
+	glm_vec4 const max0 = _mm_max_ps(min0, minVal);
+	return max0;
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_mix(glm_vec4 v1, glm_vec4 v2, glm_vec4 a)
+{
+	glm_vec4 const sub0 = glm_vec4_sub(_mm_set1_ps(1.0f), a);
+	glm_vec4 const mul0 = glm_vec4_mul(v1, sub0);
+	glm_vec4 const mad0 = glm_vec4_fma(v2, a, mul0);
+	return mad0;
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_step(glm_vec4 edge, glm_vec4 x)
+{
+	glm_vec4 const cmp = _mm_cmple_ps(x, edge);
+	return _mm_movemask_ps(cmp) == 0 ? _mm_set1_ps(1.0f) : _mm_setzero_ps();
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_smoothstep(glm_vec4 edge0, glm_vec4 edge1, glm_vec4 x)
+{
+	glm_vec4 const sub0 = glm_vec4_sub(x, edge0);
+	glm_vec4 const sub1 = glm_vec4_sub(edge1, edge0);
+	glm_vec4 const div0 = glm_vec4_sub(sub0, sub1);
+	glm_vec4 const clp0 = glm_vec4_clamp(div0, _mm_setzero_ps(), _mm_set1_ps(1.0f));
+	glm_vec4 const mul0 = glm_vec4_mul(_mm_set1_ps(2.0f), clp0);
+	glm_vec4 const sub2 = glm_vec4_sub(_mm_set1_ps(3.0f), mul0);
+	glm_vec4 const mul1 = glm_vec4_mul(clp0, clp0);
+	glm_vec4 const mul2 = glm_vec4_mul(mul1, sub2);
+	return mul2;
+}
+
+// Agner Fog method
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_nan(glm_vec4 x)
+{
+	glm_ivec4 const t1 = _mm_castps_si128(x);						// reinterpret as 32-bit integer
+	glm_ivec4 const t2 = _mm_sll_epi32(t1, _mm_cvtsi32_si128(1));	// shift out sign bit
+	glm_ivec4 const t3 = _mm_set1_epi32(int(0xFF000000));				// exponent mask
+	glm_ivec4 const t4 = _mm_and_si128(t2, t3);						// exponent
+	glm_ivec4 const t5 = _mm_andnot_si128(t3, t2);					// fraction
+	glm_ivec4 const Equal = _mm_cmpeq_epi32(t3, t4);
+	glm_ivec4 const Nequal = _mm_cmpeq_epi32(t5, _mm_setzero_si128());
+	glm_ivec4 const And = _mm_and_si128(Equal, Nequal);
+	return _mm_castsi128_ps(And);									// exponent = all 1s and fraction != 0
+}
+
+// Agner Fog method
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_inf(glm_vec4 x)
+{
+	glm_ivec4 const t1 = _mm_castps_si128(x);										// reinterpret as 32-bit integer
+	glm_ivec4 const t2 = _mm_sll_epi32(t1, _mm_cvtsi32_si128(1));					// shift out sign bit
+	return _mm_castsi128_ps(_mm_cmpeq_epi32(t2, _mm_set1_epi32(int(0xFF000000))));		// exponent is all 1s, fraction is 0
+}
+
+#endif//GLM_ARCH & GLM_ARCH_SSE2_BIT
+#line 7 "glm/detail/func_common_simd.inl"
+
+#include <immintrin.h>
+
+namespace glm{
+namespace detail
+{
+	template<qualifier Q>
+	struct compute_abs_vector<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v)
+		{
+			vec<4, float, Q> result;
+			result.data = glm_vec4_abs(v.data);
+			return result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_abs_vector<4, int, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, int, Q> call(vec<4, int, Q> const& v)
+		{
+			vec<4, int, Q> result;
+			result.data = glm_ivec4_abs(v.data);
+			return result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_floor<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v)
+		{
+			vec<4, float, Q> result;
+			result.data = glm_vec4_floor(v.data);
+			return result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_ceil<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v)
+		{
+			vec<4, float, Q> result;
+			result.data = glm_vec4_ceil(v.data);
+			return result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_fract<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v)
+		{
+			vec<4, float, Q> result;
+			result.data = glm_vec4_fract(v.data);
+			return result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_round<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v)
+		{
+			vec<4, float, Q> result;
+			result.data = glm_vec4_round(v.data);
+			return result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_mod<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& x, vec<4, float, Q> const& y)
+		{
+			vec<4, float, Q> result;
+			result.data = glm_vec4_mod(x.data, y.data);
+			return result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_min_vector<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v1, vec<4, float, Q> const& v2)
+		{
+			vec<4, float, Q> result;
+			result.data = _mm_min_ps(v1.data, v2.data);
+			return result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_min_vector<4, int, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, int, Q> call(vec<4, int, Q> const& v1, vec<4, int, Q> const& v2)
+		{
+			vec<4, int, Q> result;
+			result.data = _mm_min_epi32(v1.data, v2.data);
+			return result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_min_vector<4, uint, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, uint, Q> call(vec<4, uint, Q> const& v1, vec<4, uint, Q> const& v2)
+		{
+			vec<4, uint, Q> result;
+			result.data = _mm_min_epu32(v1.data, v2.data);
+			return result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_max_vector<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v1, vec<4, float, Q> const& v2)
+		{
+			vec<4, float, Q> result;
+			result.data = _mm_max_ps(v1.data, v2.data);
+			return result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_max_vector<4, int, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, int, Q> call(vec<4, int, Q> const& v1, vec<4, int, Q> const& v2)
+		{
+			vec<4, int, Q> result;
+			result.data = _mm_max_epi32(v1.data, v2.data);
+			return result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_max_vector<4, uint, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, uint, Q> call(vec<4, uint, Q> const& v1, vec<4, uint, Q> const& v2)
+		{
+			vec<4, uint, Q> result;
+			result.data = _mm_max_epu32(v1.data, v2.data);
+			return result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_clamp_vector<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& x, vec<4, float, Q> const& minVal, vec<4, float, Q> const& maxVal)
+		{
+			vec<4, float, Q> result;
+			result.data = _mm_min_ps(_mm_max_ps(x.data, minVal.data), maxVal.data);
+			return result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_clamp_vector<4, int, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, int, Q> call(vec<4, int, Q> const& x, vec<4, int, Q> const& minVal, vec<4, int, Q> const& maxVal)
+		{
+			vec<4, int, Q> result;
+			result.data = _mm_min_epi32(_mm_max_epi32(x.data, minVal.data), maxVal.data);
+			return result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_clamp_vector<4, uint, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, uint, Q> call(vec<4, uint, Q> const& x, vec<4, uint, Q> const& minVal, vec<4, uint, Q> const& maxVal)
+		{
+			vec<4, uint, Q> result;
+			result.data = _mm_min_epu32(_mm_max_epu32(x.data, minVal.data), maxVal.data);
+			return result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_mix_vector<4, float, bool, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& x, vec<4, float, Q> const& y, vec<4, bool, Q> const& a)
+		{
+			__m128i const Load = _mm_set_epi32(-static_cast<int>(a.w), -static_cast<int>(a.z), -static_cast<int>(a.y), -static_cast<int>(a.x));
+			__m128 const Mask = _mm_castsi128_ps(Load);
+
+			vec<4, float, Q> Result;
+#			if 0 && GLM_ARCH & GLM_ARCH_AVX
+				Result.data = _mm_blendv_ps(x.data, y.data, Mask);
+#			else
+				Result.data = _mm_or_ps(_mm_and_ps(Mask, y.data), _mm_andnot_ps(Mask, x.data));
+#			endif
+			return Result;
+		}
+	};
+/* FIXME
+	template<qualifier Q>
+	struct compute_step_vector<float, Q, tvec4>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& edge, vec<4, float, Q> const& x)
+		{
+			vec<4, float, Q> Result;
+			result.data = glm_vec4_step(edge.data, x.data);
+			return result;
+		}
+	};
+*/
+	template<qualifier Q>
+	struct compute_smoothstep_vector<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& edge0, vec<4, float, Q> const& edge1, vec<4, float, Q> const& x)
+		{
+			vec<4, float, Q> Result;
+			Result.data = glm_vec4_smoothstep(edge0.data, edge1.data, x.data);
+			return Result;
+		}
+	};
+}//namespace detail
+}//namespace glm
+
+#endif//GLM_ARCH & GLM_ARCH_SSE2_BIT
+#line 792 "glm/detail/func_common.inl"
+#endif
+#line 539 "glm/common.hpp"
+
+#line 3 "glm/detail/func_geometric.inl"
+
+namespace glm{
+namespace detail
+{
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_length
+	{
+		GLM_FUNC_QUALIFIER static T call(vec<L, T, Q> const& v)
+		{
+			return sqrt(dot(v, v));
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_distance
+	{
+		GLM_FUNC_QUALIFIER static T call(vec<L, T, Q> const& p0, vec<L, T, Q> const& p1)
+		{
+			return length(p1 - p0);
+		}
+	};
+
+	template<typename V, typename T, bool Aligned>
+	struct compute_dot{};
+
+	template<typename T, qualifier Q, bool Aligned>
+	struct compute_dot<vec<1, T, Q>, T, Aligned>
+	{
+		GLM_FUNC_QUALIFIER static T call(vec<1, T, Q> const& a, vec<1, T, Q> const& b)
+		{
+			return a.x * b.x;
+		}
+	};
+
+	template<typename T, qualifier Q, bool Aligned>
+	struct compute_dot<vec<2, T, Q>, T, Aligned>
+	{
+		GLM_FUNC_QUALIFIER static T call(vec<2, T, Q> const& a, vec<2, T, Q> const& b)
+		{
+			vec<2, T, Q> tmp(a * b);
+			return tmp.x + tmp.y;
+		}
+	};
+
+	template<typename T, qualifier Q, bool Aligned>
+	struct compute_dot<vec<3, T, Q>, T, Aligned>
+	{
+		GLM_FUNC_QUALIFIER static T call(vec<3, T, Q> const& a, vec<3, T, Q> const& b)
+		{
+			vec<3, T, Q> tmp(a * b);
+			return tmp.x + tmp.y + tmp.z;
+		}
+	};
+
+	template<typename T, qualifier Q, bool Aligned>
+	struct compute_dot<vec<4, T, Q>, T, Aligned>
+	{
+		GLM_FUNC_QUALIFIER static T call(vec<4, T, Q> const& a, vec<4, T, Q> const& b)
+		{
+			vec<4, T, Q> tmp(a * b);
+			return (tmp.x + tmp.y) + (tmp.z + tmp.w);
+		}
+	};
+
+	template<typename T, qualifier Q, bool Aligned>
+	struct compute_cross
+	{
+		GLM_FUNC_QUALIFIER static vec<3, T, Q> call(vec<3, T, Q> const& x, vec<3, T, Q> const& y)
+		{
+			GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'cross' accepts only floating-point inputs");
+
+			return vec<3, T, Q>(
+				x.y * y.z - y.y * x.z,
+				x.z * y.x - y.z * x.x,
+				x.x * y.y - y.x * x.y);
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_normalize
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& v)
+		{
+			GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'normalize' accepts only floating-point inputs");
+
+			return v * inversesqrt(dot(v, v));
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_faceforward
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& N, vec<L, T, Q> const& I, vec<L, T, Q> const& Nref)
+		{
+			GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'normalize' accepts only floating-point inputs");
+
+			return dot(Nref, I) < static_cast<T>(0) ? N : -N;
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_reflect
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& I, vec<L, T, Q> const& N)
+		{
+			return I - N * dot(N, I) * static_cast<T>(2);
+		}
+	};
+
+	template<length_t L, typename T, qualifier Q, bool Aligned>
+	struct compute_refract
+	{
+		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& I, vec<L, T, Q> const& N, T eta)
+		{
+			T const dotValue(dot(N, I));
+			T const k(static_cast<T>(1) - eta * eta * (static_cast<T>(1) - dotValue * dotValue));
+			vec<L, T, Q> const Result =
+                (k >= static_cast<T>(0)) ? (eta * I - (eta * dotValue + std::sqrt(k)) * N) : vec<L, T, Q>(0);
+			return Result;
+		}
+	};
+}//namespace detail
+
+	// length
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType length(genType x)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'length' accepts only floating-point inputs");
+
+		return abs(x);
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER T length(vec<L, T, Q> const& v)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'length' accepts only floating-point inputs");
+
+		return detail::compute_length<L, T, Q, detail::is_aligned<Q>::value>::call(v);
+	}
+
+	// distance
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType distance(genType const& p0, genType const& p1)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'distance' accepts only floating-point inputs");
+
+		return length(p1 - p0);
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER T distance(vec<L, T, Q> const& p0, vec<L, T, Q> const& p1)
+	{
+		return detail::compute_distance<L, T, Q, detail::is_aligned<Q>::value>::call(p0, p1);
+	}
+
+	// dot
+	template<typename T>
+	GLM_FUNC_QUALIFIER T dot(T x, T y)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'dot' accepts only floating-point inputs");
+		return x * y;
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER T dot(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'dot' accepts only floating-point inputs");
+		return detail::compute_dot<vec<L, T, Q>, T, detail::is_aligned<Q>::value>::call(x, y);
+	}
+
+	// cross
+	template<typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<3, T, Q> cross(vec<3, T, Q> const& x, vec<3, T, Q> const& y)
+	{
+		return detail::compute_cross<T, Q, detail::is_aligned<Q>::value>::call(x, y);
+	}
+/*
+	// normalize
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType normalize(genType const& x)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'normalize' accepts only floating-point inputs");
+
+		return x < genType(0) ? genType(-1) : genType(1);
+	}
+*/
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> normalize(vec<L, T, Q> const& x)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'normalize' accepts only floating-point inputs");
+
+		return detail::compute_normalize<L, T, Q, detail::is_aligned<Q>::value>::call(x);
+	}
+
+	// faceforward
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType faceforward(genType const& N, genType const& I, genType const& Nref)
+	{
+		return dot(Nref, I) < static_cast<genType>(0) ? N : -N;
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> faceforward(vec<L, T, Q> const& N, vec<L, T, Q> const& I, vec<L, T, Q> const& Nref)
+	{
+		return detail::compute_faceforward<L, T, Q, detail::is_aligned<Q>::value>::call(N, I, Nref);
+	}
+
+	// reflect
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType reflect(genType const& I, genType const& N)
+	{
+		return I - N * dot(N, I) * genType(2);
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> reflect(vec<L, T, Q> const& I, vec<L, T, Q> const& N)
+	{
+		return detail::compute_reflect<L, T, Q, detail::is_aligned<Q>::value>::call(I, N);
+	}
+
+	// refract
+	template<typename genType>
+	GLM_FUNC_QUALIFIER genType refract(genType const& I, genType const& N, genType eta)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'refract' accepts only floating-point inputs");
+		genType const dotValue(dot(N, I));
+		genType const k(static_cast<genType>(1) - eta * eta * (static_cast<genType>(1) - dotValue * dotValue));
+		return (eta * I - (eta * dotValue + sqrt(k)) * N) * static_cast<genType>(k >= static_cast<genType>(0));
+	}
+
+	template<length_t L, typename T, qualifier Q>
+	GLM_FUNC_QUALIFIER vec<L, T, Q> refract(vec<L, T, Q> const& I, vec<L, T, Q> const& N, T eta)
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'refract' accepts only floating-point inputs");
+		return detail::compute_refract<L, T, Q, detail::is_aligned<Q>::value>::call(I, N, eta);
+	}
+}//namespace glm
+
+#if GLM_CONFIG_SIMD == GLM_ENABLE
+// #	include "func_geometric_simd.inl"
+#line 1 "glm/detail/func_geometric_simd.inl"
+/// @ref core
+/// @file glm/detail/func_geometric_simd.inl
+
+// #include "../simd/geometric.h"
+#line 1 "glm/simd/geometric.h"
+/// @ref simd
+/// @file glm/simd/geometric.h
+
+
+
+// #include "common.h"
+#line 7 "glm/simd/geometric.h"
+
+#if GLM_ARCH & GLM_ARCH_SSE2_BIT
+
+GLM_FUNC_DECL glm_vec4 glm_vec4_dot(glm_vec4 v1, glm_vec4 v2);
+GLM_FUNC_DECL glm_vec4 glm_vec1_dot(glm_vec4 v1, glm_vec4 v2);
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_length(glm_vec4 x)
+{
+	glm_vec4 const dot0 = glm_vec4_dot(x, x);
+	glm_vec4 const sqt0 = _mm_sqrt_ps(dot0);
+	return sqt0;
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_distance(glm_vec4 p0, glm_vec4 p1)
+{
+	glm_vec4 const sub0 = _mm_sub_ps(p0, p1);
+	glm_vec4 const len0 = glm_vec4_length(sub0);
+	return len0;
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_dot(glm_vec4 v1, glm_vec4 v2)
+{
+#	if GLM_ARCH & GLM_ARCH_AVX_BIT
+		return _mm_dp_ps(v1, v2, 0xff);
+#	elif GLM_ARCH & GLM_ARCH_SSE3_BIT
+		glm_vec4 const mul0 = _mm_mul_ps(v1, v2);
+		glm_vec4 const hadd0 = _mm_hadd_ps(mul0, mul0);
+		glm_vec4 const hadd1 = _mm_hadd_ps(hadd0, hadd0);
+		return hadd1;
+#	else
+		glm_vec4 const mul0 = _mm_mul_ps(v1, v2);
+		glm_vec4 const swp0 = _mm_shuffle_ps(mul0, mul0, _MM_SHUFFLE(2, 3, 0, 1));
+		glm_vec4 const add0 = _mm_add_ps(mul0, swp0);
+		glm_vec4 const swp1 = _mm_shuffle_ps(add0, add0, _MM_SHUFFLE(0, 1, 2, 3));
+		glm_vec4 const add1 = _mm_add_ps(add0, swp1);
+		return add1;
+#	endif
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec1_dot(glm_vec4 v1, glm_vec4 v2)
+{
+#	if GLM_ARCH & GLM_ARCH_AVX_BIT
+		return _mm_dp_ps(v1, v2, 0xff);
+#	elif GLM_ARCH & GLM_ARCH_SSE3_BIT
+		glm_vec4 const mul0 = _mm_mul_ps(v1, v2);
+		glm_vec4 const had0 = _mm_hadd_ps(mul0, mul0);
+		glm_vec4 const had1 = _mm_hadd_ps(had0, had0);
+		return had1;
+#	else
+		glm_vec4 const mul0 = _mm_mul_ps(v1, v2);
+		glm_vec4 const mov0 = _mm_movehl_ps(mul0, mul0);
+		glm_vec4 const add0 = _mm_add_ps(mov0, mul0);
+		glm_vec4 const swp1 = _mm_shuffle_ps(add0, add0, 1);
+		glm_vec4 const add1 = _mm_add_ss(add0, swp1);
+		return add1;
+#	endif
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_cross(glm_vec4 v1, glm_vec4 v2)
+{
+	glm_vec4 const swp0 = _mm_shuffle_ps(v1, v1, _MM_SHUFFLE(3, 0, 2, 1));
+	glm_vec4 const swp1 = _mm_shuffle_ps(v1, v1, _MM_SHUFFLE(3, 1, 0, 2));
+	glm_vec4 const swp2 = _mm_shuffle_ps(v2, v2, _MM_SHUFFLE(3, 0, 2, 1));
+	glm_vec4 const swp3 = _mm_shuffle_ps(v2, v2, _MM_SHUFFLE(3, 1, 0, 2));
+	glm_vec4 const mul0 = _mm_mul_ps(swp0, swp3);
+	glm_vec4 const mul1 = _mm_mul_ps(swp1, swp2);
+	glm_vec4 const sub0 = _mm_sub_ps(mul0, mul1);
+	return sub0;
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_normalize(glm_vec4 v)
+{
+	glm_vec4 const dot0 = glm_vec4_dot(v, v);
+	glm_vec4 const isr0 = _mm_rsqrt_ps(dot0);
+	glm_vec4 const mul0 = _mm_mul_ps(v, isr0);
+	return mul0;
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_faceforward(glm_vec4 N, glm_vec4 I, glm_vec4 Nref)
+{
+	glm_vec4 const dot0 = glm_vec4_dot(Nref, I);
+	glm_vec4 const sgn0 = glm_vec4_sign(dot0);
+	glm_vec4 const mul0 = _mm_mul_ps(sgn0, _mm_set1_ps(-1.0f));
+	glm_vec4 const mul1 = _mm_mul_ps(N, mul0);
+	return mul1;
+}
+
+GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_reflect(glm_vec4 I, glm_vec4 N)
+{
+	glm_vec4 const dot0 = glm_vec4_dot(N, I);
+	glm_vec4 const mul0 = _mm_mul_ps(N, dot0);
+	glm_vec4 const mul1 = _mm_mul_ps(mul0, _mm_set1_ps(2.0f));
+	glm_vec4 const sub0 = _mm_sub_ps(I, mul1);
+	return sub0;
+}
+
+GLM_FUNC_QUALIFIER __m128 glm_vec4_refract(glm_vec4 I, glm_vec4 N, glm_vec4 eta)
+{
+	glm_vec4 const dot0 = glm_vec4_dot(N, I);
+	glm_vec4 const mul0 = _mm_mul_ps(eta, eta);
+	glm_vec4 const mul1 = _mm_mul_ps(dot0, dot0);
+	glm_vec4 const sub0 = _mm_sub_ps(_mm_set1_ps(1.0f), mul0);
+	glm_vec4 const sub1 = _mm_sub_ps(_mm_set1_ps(1.0f), mul1);
+	glm_vec4 const mul2 = _mm_mul_ps(sub0, sub1);
+
+	if(_mm_movemask_ps(_mm_cmplt_ss(mul2, _mm_set1_ps(0.0f))) == 0)
+		return _mm_set1_ps(0.0f);
+
+	glm_vec4 const sqt0 = _mm_sqrt_ps(mul2);
+	glm_vec4 const mad0 = glm_vec4_fma(eta, dot0, sqt0);
+	glm_vec4 const mul4 = _mm_mul_ps(mad0, N);
+	glm_vec4 const mul5 = _mm_mul_ps(eta, I);
+	glm_vec4 const sub2 = _mm_sub_ps(mul5, mul4);
+
+	return sub2;
+}
+
+#endif//GLM_ARCH & GLM_ARCH_SSE2_BIT
+#line 5 "glm/detail/func_geometric_simd.inl"
+
+#if GLM_ARCH & GLM_ARCH_SSE2_BIT
+
+namespace glm{
+namespace detail
+{
+	template<qualifier Q>
+	struct compute_length<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static float call(vec<4, float, Q> const& v)
+		{
+			return _mm_cvtss_f32(glm_vec4_length(v.data));
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_distance<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static float call(vec<4, float, Q> const& p0, vec<4, float, Q> const& p1)
+		{
+			return _mm_cvtss_f32(glm_vec4_distance(p0.data, p1.data));
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_dot<vec<4, float, Q>, float, true>
+	{
+		GLM_FUNC_QUALIFIER static float call(vec<4, float, Q> const& x, vec<4, float, Q> const& y)
+		{
+			return _mm_cvtss_f32(glm_vec1_dot(x.data, y.data));
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_cross<float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<3, float, Q> call(vec<3, float, Q> const& a, vec<3, float, Q> const& b)
+		{
+			__m128 const set0 = _mm_set_ps(0.0f, a.z, a.y, a.x);
+			__m128 const set1 = _mm_set_ps(0.0f, b.z, b.y, b.x);
+			__m128 const xpd0 = glm_vec4_cross(set0, set1);
+
+			vec<4, float, Q> Result;
+			Result.data = xpd0;
+			return vec<3, float, Q>(Result);
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_normalize<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v)
+		{
+			vec<4, float, Q> Result;
+			Result.data = glm_vec4_normalize(v.data);
+			return Result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_faceforward<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& N, vec<4, float, Q> const& I, vec<4, float, Q> const& Nref)
+		{
+			vec<4, float, Q> Result;
+			Result.data = glm_vec4_faceforward(N.data, I.data, Nref.data);
+			return Result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_reflect<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& I, vec<4, float, Q> const& N)
+		{
+			vec<4, float, Q> Result;
+			Result.data = glm_vec4_reflect(I.data, N.data);
+			return Result;
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_refract<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& I, vec<4, float, Q> const& N, float eta)
+		{
+			vec<4, float, Q> Result;
+			Result.data = glm_vec4_refract(I.data, N.data, _mm_set1_ps(eta));
+			return Result;
+		}
+	};
+}//namespace detail
+}//namespace glm
+
+#elif GLM_ARCH & GLM_ARCH_NEON_BIT
+namespace glm{
+namespace detail
+{
+	template<qualifier Q>
+	struct compute_length<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static float call(vec<4, float, Q> const& v)
+		{
+			return sqrt(compute_dot<vec<4, float, Q>, float, true>::call(v, v));
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_distance<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static float call(vec<4, float, Q> const& p0, vec<4, float, Q> const& p1)
+		{
+			return compute_length<4, float, Q, true>::call(p1 - p0);
+		}
+	};
+
+
+	template<qualifier Q>
+	struct compute_dot<vec<4, float, Q>, float, true>
+	{
+		GLM_FUNC_QUALIFIER static float call(vec<4, float, Q> const& x, vec<4, float, Q> const& y)
+		{
+#if GLM_ARCH & GLM_ARCH_ARMV8_BIT
+			float32x4_t v = vmulq_f32(x.data, y.data);
+			return vaddvq_f32(v);
+#else  // Armv7a with Neon
+			float32x4_t p = vmulq_f32(x.data, y.data);
+			float32x2_t v = vpadd_f32(vget_low_f32(p), vget_high_f32(p));
+			v = vpadd_f32(v, v);
+			return vget_lane_f32(v, 0);
+#endif
+		}
+	};
+
+	template<qualifier Q>
+	struct compute_normalize<4, float, Q, true>
+	{
+		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v)
+		{
+			float32x4_t p = vmulq_f32(v.data, v.data);
+#if GLM_ARCH & GLM_ARCH_ARMV8_BIT
+			p = vpaddq_f32(p, p);
+			p = vpaddq_f32(p, p);
+#else
+			float32x2_t t = vpadd_f32(vget_low_f32(p), vget_high_f32(p));
+			t = vpadd_f32(t, t);
+			p = vcombine_f32(t, t);
+#endif
+
+			float32x4_t vd = vrsqrteq_f32(p);
+			vec<4, float, Q> Result;
+			Result.data = vmulq_f32(v.data, vd);
+			return Result;
+		}
+	};
+}//namespace detail
+}//namespace glm
+
+#endif//GLM_ARCH & GLM_ARCH_SSE2_BIT
+#line 243 "glm/detail/func_geometric.inl"
+#endif
+#line 117 "glm/geometric.hpp"
+#line 21 "plugin-native/src/backend/cpu/kernels.h"
+// #include <glm/vec3.hpp>
+#line 22 "plugin-native/src/backend/cpu/kernels.h"
+// #include <glm/vec4.hpp>
+#line 23 "plugin-native/src/backend/cpu/kernels.h"
+
+// #include "core/params.h"
+#line 1 "plugin-native/src/core/params.h"
+// Per-cloth parameters: validation, defaults, and the per-group constants a (sub)step uses.
+
+
+#include <string>
+
+// #include "drape/drape.h"
+#line 1 "plugin-native/include/drape/drape.h"
+/*
+ * Drape: cloth simulation for games. The public C ABI (C99).
+ *
+ * Contents, by topic: 1 lifecycle (status, versions, worlds); 2 cloth (creation, masses, pins,
+ * state, stepping, sleeping); 3 parameters (models, stiffness, substeps, stability estimate);
+ * 4 output (reading positions and normals, info, statistics); 5 collision (colliders,
+ * self-collision); 6 interaction (touch drag, grabs, owner transform); 7 GPU (GLES backend);
+ * 8 Unity (render event).
+ *
+ * Rules:
+ *  - every function returns a drape_status; results come back through out-pointers;
+ *  - on failure drape_last_error() holds a thread-local, human-readable message and the object
+ *    the call was made on is unchanged;
+ *  - handles (drape_world*, drape_cloth*) are opaque pointer-sized ids (slot index + generation),
+ *    not addresses: a destroyed object's handle is refused (DRAPE_ERROR_INVALID_HANDLE) by every
+ *    call, from any thread, even after its slot is reused; a world handle is never a cloth handle;
+ *  - structs shared with C# name their twin; a test checks size and field offsets. The enum and
+ *    struct blocks between GENERATED markers come from tools/abi/abi.py (one description of
+ *    type, unit, default, range and doc for each field; do not edit them here).
+ *
+ * struct_size (versioning): every struct starts with it. A struct can grow at its end (a new
+ * "revision"); the library accepts every size it has shipped:
+ *  - structs passed in: set struct_size = sizeof the struct you compiled against. An older
+ *    revision's size is accepted and the fields it lacks take their documented defaults; any
+ *    other size is DRAPE_ERROR_STRUCT_SIZE.
+ *  - structs filled by the library (drape_stats, drape_self_collision_desc, drape_stability):
+ *    set struct_size likewise; the library writes that revision's fields only.
+ *    drape_cloth_get_info, drape_cloth_get_params and drape_params_default, which ABI 1 callers
+ *    were not asked to prepare, read any size the library never shipped (0, garbage) as the
+ *    first revision's; all three set struct_size to the size written.
+ *
+ * Threading: a world and the cloths in it may be used from one thread at a time (any thread;
+ * hand over with the usual synchronisation, e.g. a join or a mutex). Different worlds may be used
+ * from different threads at the same time. Functions taking no world or cloth (drape_abi_version,
+ * drape_last_error, *_default, drape_estimate_stability) may be called from any thread at any
+ * time. drape_last_error() is per thread. The CPU_THREADED backend runs its own workers only
+ * inside drape_world_step / drape_cloth_step (and spreads a world's CPU cloths over them); they
+ * are idle when the call returns. GL: a GLES cloth is used only on the thread whose EGL context
+ * created it, with that context current (immediate use), or its GL work runs on Unity's render
+ * thread (see 7 GPU); CPU cloths never touch GL. Checked under ThreadSanitizer:
+ * tests/native/test_threading.cpp (.ci/hardening.sh tsan).
+ *
+ * Units: metres, kilograms, seconds. Positions are in simulation (world) space.
+ */
+#ifndef DRAPE_DRAPE_H
+#define DRAPE_DRAPE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(_WIN32)
+#  if defined(DRAPE_BUILDING_LIBRARY)
+#    define DRAPE_API __declspec(dllexport)
+#  else
+#    define DRAPE_API __declspec(dllimport)
+#  endif
+#else
+#  define DRAPE_API __attribute__((visibility("default")))
+#endif
+
+/* ================================ 1. Lifecycle ================================================ */
+
+/** Bumped on any incompatible change of this header (growing a struct at its end is compatible). */
+#define DRAPE_ABI_VERSION 1
+
+/** Longest step, s: drape_world_step / drape_cloth_step refuse dt > DRAPE_MAX_DT. */
+#define DRAPE_MAX_DT 1.0f
+/** Shortest step that does anything, s: 0 < dt < DRAPE_MIN_DT is accepted (DRAPE_OK) and is a
+ *  no-op (nothing moves; pending pin moves, drag and collider motion wait for the next step). */
+#define DRAPE_MIN_DT 1e-6f
+
+/* GENERATED BEGIN drape_status */
+/* C# twin: Drape.Core.Status. */
+typedef enum drape_status {
+    DRAPE_OK = 0,
+    DRAPE_ERROR_NULL_POINTER = 1, /**< a required pointer was NULL */
+    DRAPE_ERROR_INVALID_HANDLE = 2, /**< handle is not a live object of the right kind */
+    DRAPE_ERROR_STRUCT_SIZE = 3, /**< struct_size is none of the sizes this library has shipped */
+    DRAPE_ERROR_INVALID_ENUM = 4, /**< enum value out of range */
+    DRAPE_ERROR_INVALID_ARGUMENT = 5, /**< a size, count or value is out of its allowed range */
+    DRAPE_ERROR_NOT_FINITE = 6, /**< a float input was NaN or infinite */
+    DRAPE_ERROR_INDEX_OUT_OF_RANGE = 7, /**< a vertex or triangle index is out of range */
+    DRAPE_ERROR_DEGENERATE_MESH = 8, /**< zero-area or repeated-index triangle, or no edges */
+    DRAPE_ERROR_BUFFER_TOO_SMALL = 9, /**< caller memory/layout cannot hold the output */
+    DRAPE_ERROR_BACKEND_UNAVAILABLE = 10, /**< backend not compiled in or not usable here */
+    DRAPE_ERROR_UNSTABLE = 11, /**< step diverged; the last good state was restored */
+    DRAPE_ERROR_OUT_OF_MEMORY = 12,
+    DRAPE_ERROR_GL = 13, /**< OpenGL ES error (message carries the GL log) */
+    DRAPE_ERROR_INTERNAL = 14
+} drape_status;
+/* GENERATED END drape_status */
+
+/* GENERATED BEGIN drape_backend */
+/* C# twin: Drape.Core.Backend. */
+typedef enum drape_backend {
+    DRAPE_BACKEND_CPU = 0, /**< one thread, deterministic (same input -> same bits) */
+    DRAPE_BACKEND_CPU_THREADED = 1, /**< the world's worker pool; same results as CPU */
+    DRAPE_BACKEND_GLES = 2 /**< OpenGL ES 3.0 transform feedback */
+} drape_backend;
+/* GENERATED END drape_backend */
+
+typedef struct drape_world drape_world;
+typedef struct drape_cloth drape_cloth;
+
+/* GENERATED BEGIN drape_world_desc */
+/* C# twin: Drape.Core.WorldDesc. */
+typedef struct drape_world_desc {
+    uint32_t struct_size;
+    uint32_t thread_count; /**< workers for CPU_THREADED including the caller; 0 = hardware count. Range [0,
+                                256]. Default 0 */
+} drape_world_desc;
+/* GENERATED END drape_world_desc */
+
+DRAPE_API uint32_t drape_abi_version(void);
+/** Human-readable message for the last failure on this thread ("" if none). Never NULL. */
+DRAPE_API const char* drape_last_error(void);
+/** *out_available = 1 if cloths with this backend can be created now. */
+DRAPE_API drape_status drape_backend_available(uint32_t backend, uint32_t* out_available);
+
+DRAPE_API drape_status drape_world_create(const drape_world_desc* desc, drape_world** out_world);
+/** Destroys the world and every cloth still in it (their handles become invalid). */
+DRAPE_API drape_status drape_world_destroy(drape_world* world);
+/** Steps every cloth of the world by dt seconds (0 < dt <= DRAPE_MAX_DT; below DRAPE_MIN_DT a
+ *  no-op). Returns the first failure; the other cloths are still stepped. */
+DRAPE_API drape_status drape_world_step(drape_world* world, float dt);
+
+/* ================================ 2. Cloth ==================================================== */
+/* Limits: at most 4194304 (2^22) vertices per cloth; coordinates within 1e6 m; total mass in
+ * (0, 1e6] kg. */
+
+/* GENERATED BEGIN drape_cloth_desc */
+/* C# twin: Drape.Core.ClothDesc. Common to grid and mesh creation. */
+typedef struct drape_cloth_desc {
+    uint32_t struct_size;
+    uint32_t backend; /**< drape_backend. Default CPU */
+    float total_mass; /**< kg, spread over vertices by area. Range (0, 1e6]. Default 1 */
+} drape_cloth_desc;
+/* GENERATED END drape_cloth_desc */
+
+/* GENERATED BEGIN drape_grid_desc */
+/* C# twin: Drape.Core.GridDesc. Vertex (c, r) is at origin + axis_u*width*c/(columns-1) +
+ * axis_v*height*r/(rows-1); caller vertex index = r*columns + c. */
+typedef struct drape_grid_desc {
+    uint32_t struct_size;
+    uint32_t columns; /**< vertices per row, >= 1 (columns*rows >= 2) */
+    uint32_t rows; /**< >= 1 */
+    float width; /**< m, > 0 */
+    float height; /**< m, > 0 */
+    float origin[3]; /**< m, position of vertex (0,0) */
+    float axis_u[3]; /**< unit direction of increasing column; all zero = +x */
+    float axis_v[3]; /**< unit direction of increasing row; all zero = -z */
+} drape_grid_desc;
+/* GENERATED END drape_grid_desc */
+
+/* GENERATED BEGIN drape_mesh_desc */
+/* C# twin: Drape.Core.MeshDesc. Vertices closer than weld_distance are simulated as one (Unity splits
+ * vertices at UV seams) and written back to every copy on output. The arrays are read during the create call
+ * only. */
+typedef struct drape_mesh_desc {
+    uint32_t struct_size;
+    uint32_t vertex_count; /**< >= 3 */
+    const float* positions; /**< vertex_count * 3 floats */
+    uint32_t index_count; /**< multiple of 3, >= 3 */
+    const uint32_t* indices; /**< triangle list */
+    float weld_distance; /**< m, >= 0; 0 welds only bit-identical positions */
+} drape_mesh_desc;
+/* GENERATED END drape_mesh_desc */
+
+DRAPE_API drape_status drape_cloth_create_grid(drape_world* world, const drape_cloth_desc* desc,
+                                               const drape_grid_desc* grid, drape_cloth** out_cloth);
+DRAPE_API drape_status drape_cloth_create_mesh(drape_world* world, const drape_cloth_desc* desc,
+                                               const drape_mesh_desc* mesh, drape_cloth** out_cloth);
+DRAPE_API drape_status drape_cloth_destroy(drape_cloth* cloth);
+
+/** Steps one cloth by dt seconds (0 < dt <= DRAPE_MAX_DT; below DRAPE_MIN_DT a no-op).
+ *  DRAPE_ERROR_UNSTABLE: the step diverged and the state was rolled back; pin and grab moves
+ *  asked for before it are kept and made by the next step. */
+DRAPE_API drape_status drape_cloth_step(drape_cloth* cloth, float dt);
+
+/** Per caller vertex, >= 0 and finite; 0 pins the vertex where it is. Welded copies take the
+ *  smallest value given for them. count must equal the vertex count. */
+DRAPE_API drape_status drape_cloth_set_inverse_masses(drape_cloth* cloth, const float* inverse_masses,
+                                                      uint32_t count);
+
+/* GENERATED BEGIN drape_pin */
+/* C# twin: Drape.Core.Pin. Pins a caller vertex (inverse mass 0) at a target; pinning again moves it (the
+ * move is spread over the next step's substeps). */
+typedef struct drape_pin {
+    uint32_t struct_size;
+    uint32_t vertex; /**< caller vertex index */
+    float position[3]; /**< m, target */
+} drape_pin;
+/* GENERATED END drape_pin */
+
+/** Pins (or moves already pinned) vertices; see drape_pin. */
+DRAPE_API drape_status drape_cloth_set_pins(drape_cloth* cloth, const drape_pin* pins, uint32_t count);
+/** Releases pins: the vertices get back the inverse mass they had before pinning. */
+DRAPE_API drape_status drape_cloth_release_pins(drape_cloth* cloth, const uint32_t* vertices, uint32_t count);
+/** Teleports vertices (count*3 floats, caller order) and zeroes velocities. Rest lengths keep. */
+DRAPE_API drape_status drape_cloth_set_positions(drape_cloth* cloth, const float* positions, uint32_t count);
+/** Sets velocities (count*3 floats, caller order, m/s). */
+DRAPE_API drape_status drape_cloth_set_velocities(drape_cloth* cloth, const float* velocities, uint32_t count);
+
+/* Sleeping (CPU backends; GLES: DRAPE_ERROR_BACKEND_UNAVAILABLE). */
+/* GENERATED BEGIN drape_sleep_desc */
+/* C# twin: Drape.Core.SleepDesc. A cloth whose fastest particle stays below `threshold` for `time` seconds of
+ * steps falls asleep: its velocities are zeroed and drape_cloth_step returns at once without touching the
+ * state. Colliders, pins, drag, grab, owner transform, parameters, masses, positions or velocities that
+ * change wake it. Default: threshold 0 (never sleeps). */
+typedef struct drape_sleep_desc {
+    uint32_t struct_size;
+    float threshold; /**< m/s, 0 = never sleep. Typical 0.01. Range [0, 100]. Default 0 */
+    float time; /**< s, how long motion must stay below threshold. Typical 1. Range [0, 100]. Default 0 */
+} drape_sleep_desc;
+/* GENERATED END drape_sleep_desc */
+
+DRAPE_API drape_status drape_cloth_set_sleep(drape_cloth* cloth, const drape_sleep_desc* desc);
+/** Wakes the cloth (it sleeps again after `time` seconds of stillness). */
+DRAPE_API drape_status drape_cloth_wake(drape_cloth* cloth);
+
+/* ================================ 3. Parameters =============================================== */
+
+/** Most substeps a step uses, automatic or given (params.substeps). MASS_SPRING whose stability
+ *  bound asks for more is stepped with DRAPE_MAX_SUBSTEPS and may diverge (DRAPE_ERROR_UNSTABLE,
+ *  rolled back): drape_estimate_stability tells beforehand. */
+#define DRAPE_MAX_SUBSTEPS 1000
+/** Most solver iterations per substep (params.iterations). */
+#define DRAPE_MAX_ITERATIONS 1000
+
+/* GENERATED BEGIN drape_model */
+/* C# twin: Drape.Core.Model. */
+typedef enum drape_model {
+    DRAPE_MODEL_MASS_SPRING = 0, /**< Hooke springs + damping, Verlet (paper eq. 1-3) */
+    DRAPE_MODEL_PBD = 1, /**< stretch constraints, stiffness in [0,1] (paper eq. 4-8) */
+    DRAPE_MODEL_XPBD = 2, /**< compliance = 1/stiffness in physical units, one Jacobi pass per iteration; the
+                               default. Rests softer than its springs with few iterations */
+    DRAPE_MODEL_IMPLICIT = 3 /**< implicit Euler on the same springs (N/m): exact force residual, prefactored
+                                  sparse Cholesky preconditioner; rests exactly at the springs' equilibrium
+                                  whatever the budget. CPU backends only */
+} drape_model;
+/* GENERATED END drape_model */
+
+/* GENERATED BEGIN drape_group */
+/* C# twin: Drape.Core.Group. Spring / constraint groups of the 12-neighbour stencil (grid) or of a mesh. */
+typedef enum drape_group {
+    DRAPE_GROUP_STRUCTURAL = 0, /**< grid: (+-1,0),(0,+-1); mesh: triangle edges */
+    DRAPE_GROUP_SHEAR = 1, /**< grid: (+-1,+-1); mesh: none */
+    DRAPE_GROUP_BEND = 2, /**< grid: (+-2,0),(0,+-2); mesh: vertices opposite each edge */
+    DRAPE_GROUP_COUNT = 3
+} drape_group;
+/* GENERATED END drape_group */
+
+/* GENERATED BEGIN drape_params */
+/* C# twin: Drape.Core.Params. Settable at any time; drape_params_default fills the defaults. */
+typedef struct drape_params {
+    uint32_t struct_size;
+    uint32_t model; /**< drape_model. Default XPBD */
+    float stiffness[3]; /**< per drape_group. MASS_SPRING, XPBD, IMPLICIT: N/m per spring (0 = group off);
+                             PBD: fraction in [0,1] per iteration. Range [0, 1e9]. Default 2000, 1000, 200 */
+    float damping; /**< N*s/m, along each spring (eq. 2; XPBD: constraint damping; IMPLICIT: implicit
+                        dashpot). Range [0, 1e6]. Default 0.05 */
+    float gravity[3]; /**< m/s^2. Length <= 10000. Default (0, -9.81, 0) */
+    float wind[3]; /**< m/s, air velocity. Length <= 10000. Default (0, 0, 0) */
+    float air_drag; /**< 1/s, a += air_drag*(wind - v). Range [0, 1000]. Default 0.1 */
+    uint32_t substeps; /**< per step; 0 = automatic (MASS_SPRING: from the stability bound, see
+                            drape_estimate_stability; PBD, XPBD: 16 "small steps"; IMPLICIT: 4). Automatic or
+                            given, at most DRAPE_MAX_SUBSTEPS. Range [0, DRAPE_MAX_SUBSTEPS]. Default 0 */
+    uint32_t iterations; /**< solver iterations per substep (PBD, XPBD, IMPLICIT); 0 = automatic (IMPLICIT: 4,
+                              PBD and XPBD: 1). Range [0, DRAPE_MAX_ITERATIONS]. Default 0 */
+    float max_stretch; /**< tethers (long-range attachments, Kim et al. 2012): every particle stays within (1
+                            + max_stretch) x its rest distance along the cloth to the nearest pinned particle.
+                            Fraction; 0 = off. Range [0, 100]. Default 0.1 */
+} drape_params;
+/* GENERATED END drape_params */
+
+/** Fills every field with its default and struct_size (see "struct_size" above). */
+DRAPE_API drape_status drape_params_default(drape_params* out_params);
+/** Errors: NULL_POINTER, STRUCT_SIZE, INVALID_ENUM (model), NOT_FINITE, INVALID_ARGUMENT (a field
+ *  out of its range; PBD stiffness above 1). Takes effect at the next step. */
+DRAPE_API drape_status drape_cloth_set_params(drape_cloth* cloth, const drape_params* params);
+/** The cloth's parameters (see "struct_size" above for out_params->struct_size). */
+DRAPE_API drape_status drape_cloth_get_params(const drape_cloth* cloth, drape_params* out_params);
+
+/* GENERATED BEGIN drape_stability */
+/* C# twin: Drape.Core.StabilityEstimate. What drape_estimate_stability says about a cloth before it exists:
+ * the substeps a step of dt would use and the explicit stability bound behind MASS_SPRING's automatic choice
+ * (the same computation a cloth runs when its parameters or masses change). */
+typedef struct drape_stability {
+    uint32_t struct_size;
+    uint32_t substeps; /**< substeps a step of dt uses with these parameters (params.substeps, or the
+                            automatic choice, capped at DRAPE_MAX_SUBSTEPS) */
+    uint32_t stable_substeps; /**< fewest substeps that keep MASS_SPRING within its explicit stability bound
+                                   h*omega_max < 2 (with the library's safety factor), not capped (UINT32_MAX
+                                   if beyond); 1 for PBD and XPBD */
+    float max_stable_substep; /**< s, MASS_SPRING: largest stable substep h (the tightest particle); 0 when
+                                   nothing bounds it (PBD, XPBD, no active spring) */
+    uint32_t stable; /**< 1 if substeps >= stable_substeps */
+} drape_stability;
+/* GENERATED END drape_stability */
+
+/** Stability estimate for a cloth that is not (yet) created: the cloth desc and exactly one of
+ *  grid or mesh (the other NULL) as for creation, the parameters, and a step dt (as for
+ *  drape_cloth_step). Runs the computation the cloth itself runs (area-weighted masses, springs
+ *  per particle, no pins: pinning only removes particles from the bound). Validation and errors
+ *  as for drape_cloth_create_* and drape_cloth_set_params; the backend need not be available. */
+DRAPE_API drape_status drape_estimate_stability(const drape_cloth_desc* desc, const drape_grid_desc* grid,
+                                                const drape_mesh_desc* mesh, const drape_params* params, float dt,
+                                                drape_stability* out_estimate);
+
+/* ================================ 4. Output =================================================== */
+
+/* GENERATED BEGIN drape_vertex_layout */
+/* C# twin: Drape.Core.VertexLayout. Output goes to dst + i*stride + offset for caller vertex i. */
+typedef struct drape_vertex_layout {
+    uint32_t struct_size;
+    uint32_t stride; /**< bytes between vertices, >= 12, multiple of 4 */
+    int32_t position_offset; /**< bytes, multiple of 4, or -1 = do not write */
+    int32_t normal_offset; /**< bytes, multiple of 4, or -1 = do not write */
+    float origin[3]; /**< m, positions are written relative to this point of simulation space (position -
+                          origin, computed in double): far from the world origin, write around a point near
+                          the cloth (the renderer's transform, a floating origin) to keep float precision.
+                          Must be 0 for drape_cloth_set_output_buffer. Default (0, 0, 0). Added in struct
+                          revision 1 (older sizes still accepted) */
+} drape_vertex_layout;
+/* GENERATED END drape_vertex_layout */
+
+/** Writes positions and/or normals of every caller vertex into dst (dst_size bytes). */
+DRAPE_API drape_status drape_cloth_read(const drape_cloth* cloth, const drape_vertex_layout* layout,
+                                        void* dst, size_t dst_size);
+
+/* GENERATED BEGIN drape_cloth_info */
+/* C# twin: Drape.Core.ClothInfo. */
+typedef struct drape_cloth_info {
+    uint32_t struct_size;
+    uint32_t vertex_count; /**< caller vertices (before welding) */
+    uint32_t particle_count; /**< simulated particles (after welding) */
+    uint32_t spring_count[3]; /**< springs/constraints per drape_group */
+    uint32_t triangle_count; /**< 0 for a grid with a single row or column */
+    uint32_t backend; /**< drape_backend */
+} drape_cloth_info;
+/* GENERATED END drape_cloth_info */
+
+/** Sizes of the cloth (see "struct_size" above for out_info->struct_size). */
+DRAPE_API drape_status drape_cloth_get_info(const drape_cloth* cloth, drape_cloth_info* out_info);
+
+/* GENERATED BEGIN drape_stats */
+/* C# twin: Drape.Core.Stats. Describes the last step. */
+typedef struct drape_stats {
+    uint32_t struct_size;
+    float step_ms; /**< ms, wall time of the last step */
+    uint32_t substeps; /**< substeps used by the last step */
+    uint32_t iterations; /**< iterations per substep used by the last step */
+    float max_strain; /**< max over structural+shear springs of |l/L0 - 1| */
+    float rms_strain;
+    float kinetic_energy; /**< J */
+    float potential_energy; /**< J, gravity relative to y = 0 */
+    float elastic_energy; /**< J, springs (MASS_SPRING, XPBD, IMPLICIT); 0 for PBD */
+    uint32_t non_finite; /**< 1 if the last step produced NaN/Inf (and was rolled back) */
+    uint32_t unstable_steps; /**< steps rolled back since creation */
+    uint32_t sleeping; /**< 1 if the cloth is asleep (drape_sleep_desc): steps do no work. Added in struct
+                            revision 1 (older sizes still accepted) */
+} drape_stats;
+/* GENERATED END drape_stats */
+
+/** Statistics of the last step; out_stats->struct_size must be a size drape_stats has shipped. */
+DRAPE_API drape_status drape_cloth_get_stats(const drape_cloth* cloth, drape_stats* out_stats);
+
+/* ================================ 5. Collision ================================================ */
+/* On a GLES cloth colliders run on the GPU like on the CPU (a collision pass per substep,
+ * compiled only while the cloth has colliders; it tests every collider, as the cloth's bounds are
+ * on the GPU). Self-collision is CPU-only. */
+
+/** Most colliders one cloth takes (drape_cloth_set_colliders). */
+#define DRAPE_MAX_COLLIDERS 64
+
+/* GENERATED BEGIN drape_collider_shape */
+/* C# twin: Drape.Core.ColliderShape. */
+typedef enum drape_collider_shape {
+    DRAPE_COLLIDER_SPHERE = 0, /**< size[0] = radius (> 0) */
+    DRAPE_COLLIDER_CAPSULE = 1, /**< size[0] = radius (> 0), size[1] = half length (>= 0) of the segment along
+                                     local y between the cap centres (Unity: max(0, height/2 - radius)) */
+    DRAPE_COLLIDER_BOX = 2, /**< size = half extents (each > 0), oriented by rotation */
+    DRAPE_COLLIDER_PLANE = 3 /**< infinite; local +y (rotation applied to (0,1,0)) points to the free side,
+                                  position is a point on it; size ignored */
+} drape_collider_shape;
+/* GENERATED END drape_collider_shape */
+
+/* GENERATED BEGIN drape_collider */
+/* C# twin: Drape.Core.ColliderDesc. One element of the array given to drape_cloth_set_colliders. */
+typedef struct drape_collider {
+    uint32_t struct_size;
+    uint32_t shape; /**< drape_collider_shape */
+    uint32_t id; /**< host's stable id, unique in the array. The collider moves from the transform it had
+                      under the same id in the previous call to this one, interpolated across the next step's
+                      substeps (no tunnelling); a new id starts at rest */
+    float position[3]; /**< m, simulation space */
+    float rotation[4]; /**< unit quaternion x, y, z, w (|q| within 1e-3 of 1; renormalised). Default (0, 0, 0,
+                            1) */
+    float size[3]; /**< m, see drape_collider_shape */
+    float margin; /**< m, in [0, 10]: distance kept between the cloth and the surface (cloth thickness plus
+                       skin); typical 0.005 */
+    float friction; /**< Coulomb coefficient in [0, 10]; 0 = frictionless. Typical 0.3-0.8 */
+} drape_collider;
+/* GENERATED END drape_collider */
+
+/** Replaces the cloth's colliders (call once per frame with the current transforms; count 0
+ *  removes them all). Nothing is checked against the cloth before the next step; with no
+ *  colliders, or none whose bounds touch the cloth's, the step does no collision work.
+ *  Errors: NULL_POINTER, STRUCT_SIZE (per element), INVALID_ENUM (shape), NOT_FINITE,
+ *  INVALID_ARGUMENT (count > DRAPE_MAX_COLLIDERS, sizes (each <= 1e6 m), margin, friction,
+ *  duplicate id, non-unit rotation). A change of any collider wakes a sleeping cloth. */
+DRAPE_API drape_status drape_cloth_set_colliders(drape_cloth* cloth, const drape_collider* colliders,
+                                                 uint32_t count);
+
+/* GENERATED BEGIN drape_self_collision_desc */
+/* C# twin: Drape.Core.SelfCollisionDesc. Self-collision: particles of the cloth that are not neighbours in
+ * the rest mesh are kept at least `thickness` apart, so a cloth folding onto itself does not pass through
+ * itself. Resolved once per substep (after the solve, before colliders) over candidate pairs from a spatial
+ * hash, rebuilt only when the cloth has moved enough to need it; pairs that share a spring or lie closer than
+ * 1.5 x thickness in the rest mesh never collide, and a pair that passed through each other within a substep
+ * is pushed back to the side it came from. It works on particles: with a thickness well below the particle
+ * spacing a particle can slip through the middle of a grid cell of another layer; the particle spacing is a
+ * good thickness. A particle moving more than one thickness per substep relative to the cloth's mean motion
+ * may pass through (raise substeps). Off by default: a cloth without it does no extra work. CPU backends only
+ * (GLES: not yet). */
+typedef struct drape_self_collision_desc {
+    uint32_t struct_size;
+    uint32_t enabled; /**< 1 = on, 0 = off (default). Default 0 */
+    float thickness; /**< m, distance kept between non-neighbour particles: > 0 when enabled (>= 0 when not),
+                          at most 1/4 of the diagonal of the cloth's rest bounding box. Typical: the particle
+                          spacing. Default 0. Default 0 */
+    float friction; /**< Coulomb coefficient between layers in [0, 10]; 0 = frictionless (default). Typical
+                         0.1-0.5. Default 0 */
+} drape_self_collision_desc;
+/* GENERATED END drape_self_collision_desc */
+
+/** Turns self-collision on or off (see drape_self_collision_desc); takes effect at the next step.
+ *  Errors: NULL_POINTER, STRUCT_SIZE, NOT_FINITE (thickness, friction), INVALID_ARGUMENT (enabled
+ *  not 0/1, thickness or friction out of range), BACKEND_UNAVAILABLE (enabling on a GLES cloth;
+ *  turning it off there is accepted and does nothing). A change wakes a sleeping cloth. */
+DRAPE_API drape_status drape_cloth_set_self_collision(drape_cloth* cloth, const drape_self_collision_desc* desc);
+/** Current setting (out_desc->struct_size must be set). A new cloth: enabled 0, thickness 0, friction 0. */
+DRAPE_API drape_status drape_cloth_get_self_collision(const drape_cloth* cloth, drape_self_collision_desc* out_desc);
+
+/* ================================ 6. Interaction ============================================== */
+/* Touch drag runs on every backend (a GLES cloth reads its positions back once per
+ * drape_cloth_drag). Grabs and the owner transform are CPU-only: they return
+ * DRAPE_ERROR_BACKEND_UNAVAILABLE for GLES cloths. Limits: 16 touches per drag call, 16 grabs
+ * held at once, pick radius in (0, 1e4] px, screen positions within 1e6 px. */
+
+/* GENERATED BEGIN drape_view */
+/* C# twin: Drape.Core.View. Matrices are 4x4, column-major (glm, OpenGL and Unity's Matrix4x4 memory order:
+ * element (row r, column c) at [c*4 + r]); OpenGL clip conventions (NDC in [-1,1]^3; Unity:
+ * GL.GetGPUProjectionMatrix is not needed, pass Camera.projectionMatrix). */
+typedef struct drape_view {
+    uint32_t struct_size;
+    float world[16]; /**< simulation space -> world (identity if the cloth simulates in world space) */
+    float view[16]; /**< world -> camera */
+    float projection[16]; /**< camera -> clip */
+    float viewport[2]; /**< px, width and height (> 0); screen origin bottom-left */
+} drape_view;
+/* GENERATED END drape_view */
+
+/* GENERATED BEGIN drape_touch */
+/* C# twin: Drape.Core.TouchPoint. Touch drag, paper eq. 9 (with the exponent's sign restored): c = min(1, A
+ * exp(-r^2 / (2 sigma))), r = screen distance (px) of the vertex from the touch. The vertex's screen position
+ * moves by c * motion and is unprojected at its own depth. As in the paper, sigma divides r^2 directly (it is
+ * a variance, px^2), and A = 200, sigma = 300 px^2 (the paper's constants, interpreted in pixels: in NDC
+ * units they would give the same c everywhere). Drape clamps c to 1 so no vertex outruns the finger: with the
+ * defaults the vertices within sqrt(2 sigma ln A) = 56 px follow the finger fully, c = 0.5 at 60 px, 0.01 at
+ * 77 px. */
+typedef struct drape_touch {
+    uint32_t struct_size;
+    float position[2]; /**< px, where the finger was at the previous call (the touch point). Range [-1e6,
+                            1e6]. Default (0, 0) */
+    float motion[2]; /**< px, finger motion since then. Range [-1e6, 1e6]. Default (0, 0) */
+    float amplitude; /**< A. Range (0, 1e6]. Default 200 */
+    float sigma; /**< px^2. Range (0, 1e12]. Default 300 */
+} drape_touch;
+/* GENERATED END drape_touch */
+
+/** Fills struct_size and the defaults (position, motion 0; A 200; sigma 300). */
+DRAPE_API drape_status drape_touch_default(drape_touch* out_touch);
+/** Drags the cloth with `count` touches (0..16) seen through `view`; the displacement is spread
+ *  over the next step (the dragged vertices get the finger's velocity). Several calls before a
+ *  step add up. Kinematic (pinned, grabbed) vertices are not moved. Wakes the cloth if anything moves. */
+DRAPE_API drape_status drape_cloth_drag(drape_cloth* cloth, const drape_view* view, const drape_touch* touches,
+                                        uint32_t count);
+/** Pick-and-hold: grabs the free vertex nearest (on screen) to `position` (px) within
+ *  `pick_radius` px and holds it as a moving pin at its current depth. `touch_id` names the grab
+ *  (at most 16 at once; grabbing with a live id releases the old one first). *out_vertex = the
+ *  caller vertex, or UINT32_MAX if none was within the radius (still DRAPE_OK). */
+DRAPE_API drape_status drape_cloth_grab(drape_cloth* cloth, const drape_view* view, uint32_t touch_id,
+                                        const float position[2], float pick_radius, uint32_t* out_vertex);
+/** Moves a grabbed vertex under the finger at `position` (px), at the depth it was grabbed at;
+ *  the move is spread over the next step like a pin move. INVALID_ARGUMENT if touch_id holds nothing. */
+DRAPE_API drape_status drape_cloth_grab_move(drape_cloth* cloth, const drape_view* view, uint32_t touch_id,
+                                             const float position[2]);
+/** Releases a grab (the vertex gets its inverse mass back and keeps its velocity). Unknown id: OK. */
+DRAPE_API drape_status drape_cloth_grab_release(drape_cloth* cloth, uint32_t touch_id);
+
+/* GENERATED BEGIN drape_owner */
+/* C# twin: Drape.Core.Owner. The transform of the object the cloth hangs on (character, flag pole), in
+ * simulation space. Pinned vertices move rigidly with it. Free vertices are carried along by (1 - inertia) of
+ * the owner's motion without gaining velocity: inertia 0 simulates the cloth fully in the owner's local space
+ * (owner motion has no inertial effect), 1 fully in world space (the cloth lags and swings as the pins drag
+ * it). A jump of the owner's position by more than teleport_distance moves the whole cloth rigidly with it
+ * (shape kept, velocities zeroed) instead of stretching it across the world. */
+typedef struct drape_owner {
+    uint32_t struct_size;
+    float position[3]; /**< m. Range [-1e6, 1e6]. Default (0, 0, 0) */
+    float rotation[4]; /**< unit quaternion x, y, z, w. Default (0, 0, 0, 1) */
+    float linear_inertia; /**< Range [0, 1]. Default 1 */
+    float angular_inertia; /**< Range [0, 1]. Default 1 */
+    float teleport_distance; /**< m. Range (0, 1e6]. Default 1 */
+} drape_owner;
+/* GENERATED END drape_owner */
+
+/** Fills struct_size and defaults (identity transform, inertia 1, teleport_distance 1 m). */
+DRAPE_API drape_status drape_owner_default(drape_owner* out_owner);
+/** Sets the owner transform for this frame. The first call only records it; later calls move
+ *  pins and cloth by the change since the previous call (see drape_owner). Wakes on change. */
+DRAPE_API drape_status drape_cloth_set_owner(drape_cloth* cloth, const drape_owner* owner);
+
+/* ================================ 7. GPU (DRAPE_BACKEND_GLES) ================================= */
+/* A GLES cloth keeps its state in GL buffers of the context that was current when it was created.
+ * Immediate use (tests, samples, apps owning the context): create, step, read and destroy with
+ * that context current on the calling thread; without one, creation fails with
+ * DRAPE_ERROR_BACKEND_UNAVAILABLE and steps with DRAPE_ERROR_BACKEND_UNAVAILABLE.
+ * Unity (no context on the main thread, an OpenGLES3 device seen by UnityPluginLoad): calls on the
+ * main thread only record; the GL work (creation, queued steps and edits, output, releasing
+ * destroyed cloths) runs on the render thread when the event from drape_unity_render_event fires.
+ * Errors met there are returned by the cloth's next drape_cloth_step.
+ * Steps never read back. drape_cloth_read and drape_cloth_get_stats read the state back (immediate
+ * use only: with the context current) and then report what a CPU cloth would: positions, normals,
+ * energies, and max/rms strain and non_finite from that read-back state; step_ms is the time to
+ * record the GL commands; there is no divergence check or rollback on the GPU (unstable_steps
+ * stays 0). Setters that need the current positions (inverse masses, new pins, releasing pins,
+ * velocities) read back too. */
+
+/** Output target of a GLES cloth: after every step (and now) the GPU writes positions and/or
+ *  normals of every caller vertex into GL buffer `gl_buffer` (Unity: Mesh.GetNativeVertexBufferPtr)
+ *  at gl_buffer + i*stride + offset; bytes of the stride outside position/normal are kept.
+ *  The buffer must hold vertex_count*stride bytes (checked with glGetBufferParameteriv, also before
+ *  each step); stride <= 256. gl_buffer = 0 (layout may be NULL) stops writing. */
+DRAPE_API drape_status drape_cloth_set_output_buffer(drape_cloth* cloth, uint32_t gl_buffer,
+                                                     const drape_vertex_layout* layout);
+/** Copies the GPU state of a GLES cloth to its CPU copy (immediate: now; Unity: at the next render
+ *  event). Not needed for drape_cloth_read in immediate use. No-op for CPU cloths. */
+DRAPE_API drape_status drape_cloth_readback(drape_cloth* cloth);
+
+/* ================================ 8. Unity ==================================================== */
+/* UnityPluginLoad / UnityPluginUnload are exported too (Unity's native plug-in interface). */
+
+/** The render-event callback for GL.IssuePluginEvent / CommandBuffer.IssuePluginEvent and the
+ *  event id to pass (reserved from Unity). The event runs every GLES cloth's recorded GL work.
+ *  NULL_POINTER (with a message) if either out-pointer is NULL. */
+DRAPE_API drape_status drape_unity_render_event(void** out_callback, int32_t* out_event_id);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* DRAPE_DRAPE_H */
+#line 7 "plugin-native/src/core/params.h"
+
+namespace drape {
+
+/// Defaults documented in drape.h (from tools/abi/abi.py).
+drape_params default_params();
+
+/// Empty string when valid; otherwise what is wrong (status in *status).
+std::string validate_params(const drape_params& p, drape_status* status);
+
+/// Substeps used by default for the position-based models ("small steps", Macklin et al. 2019:
+/// at equal cost substeps x iterations, 16 x 1 beat 4 x 4 on every scene of tests/bench:
+/// E2 0.070 vs 0.101 on the two-corner cloth, 0.039 vs 0.147 on the R4 chain).
+constexpr uint32_t kAutoSubstepsPositionBased = 16;
+/// Upper bound on substeps per step, automatic or given (drape.h).
+constexpr uint32_t kMaxSubsteps = DRAPE_MAX_SUBSTEPS;
+constexpr uint32_t kMaxIterations = DRAPE_MAX_ITERATIONS;
+/// IMPLICIT defaults (substeps x iterations), chosen on the work-precision bench (tests/bench).
+constexpr uint32_t kAutoSubstepsImplicit = 4;
+constexpr uint32_t kAutoIterationsImplicit = 4;
+/// IMPLICIT: relative change of the substep beyond which its matrix is refactored (any matrix
+/// gives the exact rest state; a stale one only converges more slowly).
+constexpr float kImplicitRefactor = 0.25f;
+/// Frame step assumed before the first step (for work done ahead of it), s.
+constexpr float kDefaultH = 1.0f / 60.0f;
+/// Fraction of the explicit stability limit used when MASS_SPRING picks substeps itself.
+constexpr float kStabilitySafety = 0.9f;
+/// Jacobi coupling weight theta (kernels.h jacobi_scale); convergent for theta > 1/2.
+constexpr float kJacobiCoupling = 0.6f;
+/// MASS_SPRING's explicit stability bound for one particle (accuracy.md, "cruder" form, valid in
+/// any pose): w^2 <= 2 w_i sum_j k_ij; with the dashpots' c = 2 w_i sum kd, Verlet needs
+/// h^2 w^2 + 2 h c <= 4, times kStabilitySafety^2. The largest such substep h, s (INFINITY when
+/// nothing bounds it: no active spring or no inverse mass).
+float mass_spring_max_substep(float inverse_mass, float stiffness_sum, float damping, uint32_t active_springs);
+
+/// Substeps a step of dt uses: params.substeps if set; else MASS_SPRING: ceil(dt / h_max)
+/// (h_max from mass_spring_max_substep, the tightest particle), PBD/XPBD:
+/// kAutoSubstepsPositionBased; always in [1, kMaxSubsteps].
+uint32_t substeps_for(const drape_params& p, float h_max, float dt);
+
+struct Topology;
+struct StabilityEstimate {
+    uint32_t substeps;          ///< what a step of dt uses
+    uint32_t stable_substeps;   ///< fewest within the explicit bound (MASS_SPRING), 1 otherwise
+    float max_stable_substep;   ///< s; 0 = no explicit bound
+};
+/// For a cloth with this topology (cooked masses, no pins) and parameters.
+StabilityEstimate estimate_stability(const Topology& topo, const drape_params& p, float dt);
+
+/// A cloth farther than this from its origin (Cloth::origin; any axis, m) is re-centred: local
+/// coordinates stay within a few metres, where float resolution is about 5e-7 m. A cloth created
+/// within it of the caller's origin starts with origin 0 (same arithmetic as simulating in the
+/// caller's space).
+constexpr float kRecentreDistance = 4.0f;
+
+/// Strain beyond which a step counts as diverged ("runaway strain", accuracy.md).
+constexpr float kRunawayStrain = 10.0f;
+
+}  // namespace drape
+#line 25 "plugin-native/src/backend/cpu/kernels.h"
+// #include "core/topology.h"
+#line 1 "plugin-native/src/core/topology.h"
+// Cooked, immutable description of a cloth: particles, neighbour table, triangles, masses.
+// Cooked once at creation (grid or triangle mesh); never touched by a step.
+
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+// #include <glm/vec3.hpp>
+#line 10 "plugin-native/src/core/topology.h"
+
+// #include "drape/drape.h"
+#line 12 "plugin-native/src/core/topology.h"
+
+namespace drape {
+
+/// Neighbour table, one row of `slots` entries per particle (the paper's per-vertex spring list).
+/// Row i holds the springs of particle i in [0, count[i]); the rest of the row is padding
+/// (index = i, rest = 0, group = kNoGroup). Every spring appears twice, once in each end's row,
+/// so a per-particle gather (CPU or a GLES vertex shader) sees all of its springs.
+struct NeighbourTable {
+    static constexpr uint8_t kNoGroup = 0xff;
+    uint32_t slots = 0;               ///< row length (12 for a grid, max valence for a mesh)
+    std::vector<uint32_t> index;      ///< particle at the other end
+    std::vector<float> rest;          ///< rest length, m
+    std::vector<uint8_t> group;       ///< drape_group, or kNoGroup for padding
+    std::vector<uint32_t> count;      ///< used slots per particle
+};
+
+struct Topology {
+    uint32_t vertex_count = 0;                ///< caller vertices
+    uint32_t particle_count = 0;              ///< after welding
+    std::vector<uint32_t> vertex_to_particle; ///< caller vertex -> particle
+    std::vector<glm::vec3> rest_position;     ///< per particle, m
+    std::vector<float> mass;                  ///< per particle, kg (area-weighted share)
+    std::vector<uint32_t> triangles;          ///< particle indices, 3 per triangle (for normals)
+    NeighbourTable nbr;
+    uint32_t spring_count[DRAPE_GROUP_COUNT] = {};
+    float extent = 0;                         ///< diagonal of the rest bounding box, m
+};
+
+/// Result of cooking: a status and, on failure, the message for drape_last_error().
+struct CookResult {
+    drape_status status = DRAPE_OK;
+    std::string message;
+};
+
+/// Grid with the paper's 12-spring stencil. Inputs must already be validated.
+Topology cook_grid(const drape_grid_desc& grid, float total_mass);
+
+/// Arbitrary triangle mesh: welds coincident vertices, structural springs on edges, bend springs
+/// between the vertices opposite each interior edge. Validates indices and degenerate triangles.
+CookResult cook_mesh(const drape_mesh_desc& mesh, float total_mass, Topology& out);
+
+}  // namespace drape
+#line 26 "plugin-native/src/backend/cpu/kernels.h"
+
+namespace drape::kernels {
+
+using Particle = glm::vec4;
+
+/// Per-substep constants for each spring group. Derived from drape_params and h.
+struct GroupConstants {
+    float stiffness[DRAPE_GROUP_COUNT];   ///< MASS_SPRING: k, N/m. PBD: fraction per iteration
+    float compliance[DRAPE_GROUP_COUNT];  ///< XPBD: alpha~ = 1/(k h^2); 0 when k is 0 (group off)
+    float damping_ratio[DRAPE_GROUP_COUNT]; ///< XPBD: gamma = alpha~ * (h^2 kd) / h = kd/(k h)
+    bool active[DRAPE_GROUP_COUNT];       ///< stiffness > 0
+};
+
+/// Everything a substep needs, as plain pointers (no ownership).
+struct SubstepContext {
+    const uint32_t* nbr_index;
+    const float* nbr_rest;
+    const uint8_t* nbr_group;
+    const uint32_t* nbr_count;
+    const uint32_t* active_count;  ///< active springs per particle (Jacobi row sums)
+    uint32_t slots;
+    // Column-major copies of the table for the constraint iteration: slot s of particle i at
+    // s * stride + i, so four consecutive particles' slot s are contiguous (kernels_simd.h).
+    uint32_t stride;               ///< particle count
+    const uint32_t* col_index;
+    const float* col_rest;
+    const uint8_t* col_group;
+    float* lambda;                 ///< XPBD multipliers, one per slot, column-major (both ends keep
+                                   ///< equal copies); NULL when there is one iteration per substep
+                                   ///< (they start at 0 and are never read again)
+    GroupConstants groups;
+    glm::vec3 gravity, wind;
+    float air_drag;
+    float damping;                 ///< kd, N*s/m
+    float h;                       ///< substep, s
+    float h_prev;                  ///< previous substep, s (velocity = d / h_prev)
+    float h_ratio;                 ///< h / h_prev: exactly 1 for equal substeps, so steady
+                                   ///< motion is not rescaled by a rounded 1/h each substep
+    float accel_h;                 ///< (h + h_prev_for_accel)/2: h, or h/2 on the first step
+};
+
+inline bool active_slot(const SubstepContext& c, size_t slot) {
+    uint8_t g = c.nbr_group[slot];
+    return g < DRAPE_GROUP_COUNT && c.groups.active[g];
+}
+
+/// Unit vector and length of d; zero vector for a zero-length spring (no direction, no force).
+inline glm::vec3 direction(const glm::vec3& d, float* len) {
+    *len = std::sqrt(glm::dot(d, d));
+    return *len > 0 ? d * (1.0f / *len) : glm::vec3(0.0f);
+}
+
+/// External acceleration: gravity plus linear air drag towards the wind velocity.
+inline glm::vec3 external_accel(const SubstepContext& c, const glm::vec3& v) {
+    return c.gravity + c.air_drag * (c.wind - v);
+}
+
+/// MASS_SPRING (paper eq. 1-3): Hooke force plus a dashpot along each spring, then a Verlet step
+/// d' = d h/h_prev + a h (h + h_prev)/2, x' = x + d' (variable-step Verlet in displacement form;
+/// exact for constant acceleration when the first step uses h/2, see accuracy.md R1).
+inline void mass_spring_step(const SubstepContext& c, const Particle* x, const Particle* d, Particle* x_out,
+                             Particle* d_out, uint32_t begin, uint32_t end) {
+    const float inv_hp = 1.0f / c.h_prev;
+    for (uint32_t i = begin; i < end; ++i) {
+        const glm::vec3 xi(x[i]);
+        const float wi = x[i].w;
+        if (wi == 0.0f) {
+            x_out[i] = x[i];
+            d_out[i] = Particle(0.0f);
+            continue;
+        }
+        const glm::vec3 vi = glm::vec3(d[i]) * inv_hp;
+        glm::vec3 force(0.0f);
+        const size_t row = size_t(i) * c.slots;
+        for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
+            const size_t slot = row + s;
+            if (!active_slot(c, slot)) continue;
+            const uint32_t j = c.nbr_index[slot];
+            const glm::vec3 vj = glm::vec3(d[j]) * inv_hp;
+            float len;
+            const glm::vec3 n = direction(xi - glm::vec3(x[j]), &len);
+            const float k = c.groups.stiffness[c.nbr_group[slot]];
+            force += (-k * (len - c.nbr_rest[slot]) - c.damping * glm::dot(vi - vj, n)) * n;
+        }
+        const glm::vec3 a = wi * force + external_accel(c, vi);
+        const glm::vec3 dn = glm::vec3(d[i]) * c.h_ratio + a * (c.h * c.accel_h);
+        x_out[i] = Particle(xi + dn, wi);
+        d_out[i] = Particle(dn, wi);
+    }
+}
+
+/// PBD / XPBD prediction: the inertial displacement of this substep under external forces,
+/// d' = d h/h_prev + a h (h + h_prev)/2, written as a displacement record; multipliers reset.
+/// Position-based substeps then work on displacements from the substep start, not on absolute
+/// positions, for the same float reason as the state (see the top of this file).
+/// kDashpot (PBD, which has no compliance to carry damping): explicit dashpots along the springs,
+/// kd limited per spring to 1/(h (wi ci + wj cj)) so the explicit update cannot overshoot.
+template <bool kDashpot>
+inline void predict(const SubstepContext& c, const Particle* x, const Particle* d, Particle* out,
+                    uint32_t begin, uint32_t end) {
+    const float inv_hp = 1.0f / c.h_prev;
+    for (uint32_t i = begin; i < end; ++i) {
+        const float wi = x[i].w;
+        glm::vec3 dn(0.0f);
+        if (wi != 0.0f) {
+            const glm::vec3 vi = glm::vec3(d[i]) * inv_hp;
+            glm::vec3 a = external_accel(c, vi);
+            if (kDashpot) {
+                const glm::vec3 xi(x[i]);
+                glm::vec3 force(0.0f);
+                const size_t row = size_t(i) * c.slots;
+                for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
+                    const size_t slot = row + s;
+                    if (!active_slot(c, slot)) continue;
+                    const uint32_t j = c.nbr_index[slot];
+                    const glm::vec3 vj = glm::vec3(d[j]) * inv_hp;
+                    float len;
+                    const glm::vec3 n = direction(xi - glm::vec3(x[j]), &len);
+                    const float limit = 1.0f / (c.h * (wi * float(c.active_count[i]) +
+                                                       x[j].w * float(c.active_count[j])));
+                    force -= std::fmin(c.damping, limit) * glm::dot(vi - vj, n) * n;
+                }
+                a += wi * force;
+            }
+            dn = glm::vec3(d[i]) * c.h_ratio + a * (c.h * c.accel_h);
+        }
+        out[i] = Particle(dn, wi);
+    }
+    if (c.lambda)  // column-major: one contiguous run per slot
+        for (uint32_t s = 0; s < c.slots; ++s)
+            std::fill(c.lambda + size_t(s) * c.stride + begin, c.lambda + size_t(s) * c.stride + end, 0.0f);
+}
+
+/// Jacobi scaling of one constraint's update: 1 / (1 + theta R), R = the constraint's off-diagonal
+/// row sum over its diagonal in J W J^T + alpha~ (with |cos| <= 1, so it holds in any pose).
+/// An uncoupled constraint gets the full update; for theta > 1/2 the scaled Jacobi iteration
+/// converges (2P - A is diagonally dominant).
+inline float jacobi_scale(float wi, float wj, uint32_t ci, uint32_t cj, float diag, float gamma_factor) {
+    const float off = gamma_factor * (wi * float(ci - 1) + wj * float(cj - 1));
+    return 1.0f / (1.0f + kJacobiCoupling * off / diag);
+}
+
+/// Per-spring factor of a Jacobi update, computed once per step (it depends on h, the masses and
+/// the active springs, none of which change between substeps): XPBD's 1/diag and PBD's k/wsum,
+/// each times jacobi_scale; 0 for inactive springs and padding. Column-major like `lambda`;
+/// symmetric in i and j.
+template <bool kXpbd>
+inline void spring_coefficients(const SubstepContext& c, const Particle* x, float* coef, uint32_t begin, uint32_t end) {
+    for (uint32_t i = begin; i < end; ++i) {
+        const float wi = x[i].w;
+        const size_t row = size_t(i) * c.slots;
+        for (uint32_t s = 0; s < c.slots; ++s) {
+            const size_t slot = row + s;
+            const size_t col = size_t(s) * c.stride + i;
+            float& k = coef[col];
+            k = 0.0f;
+            if (s >= c.nbr_count[i] || !active_slot(c, slot) || wi == 0.0f) continue;
+            const uint32_t j = c.nbr_index[slot];
+            const uint8_t g = c.nbr_group[slot];
+            const float wj = x[j].w;
+            const float wsum = wi + wj;
+            if (kXpbd) {
+                const float gamma = c.groups.damping_ratio[g];
+                const float diag = (1.0f + gamma) * wsum + c.groups.compliance[g];
+                k = jacobi_scale(wi, wj, c.active_count[i], c.active_count[j], diag, 1.0f + gamma) / diag;
+            } else {
+                k = c.groups.stiffness[g] * jacobi_scale(wi, wj, c.active_count[i], c.active_count[j], wsum, 1.0f) / wsum;
+            }
+        }
+    }
+}
+
+/// One PBD (paper eq. 7-8, stiffness k per iteration) or XPBD (Macklin 2016 eq. 18 with the
+/// damping term of eq. 26) Jacobi iteration on displacements `disp` from the substep start
+/// `start`; writes displacements to `out` and, with kCommit (the last iteration), also the new
+/// positions start + displacement to `x_out`. `coef` from spring_coefficients (0 for inactive
+/// springs, which then contribute nothing). Symmetric in i and j, so both copies of each lambda
+/// stay equal.
+template <bool kXpbd, bool kCommit>
+inline void constraint_iteration(const SubstepContext& c, const float* coef, const Particle* disp,
+                                 const Particle* start, Particle* out, Particle* x_out, uint32_t begin, uint32_t end) {
+    for (uint32_t i = begin; i < end; ++i) {
+        const float wi = disp[i].w;
+        const glm::vec3 di(disp[i]);
+        const glm::vec3 si(start[i]);
+        glm::vec3 dx(0.0f);
+        if (wi != 0.0f) {
+            const uint32_t count = c.nbr_count[i];
+            for (uint32_t s = 0; s < count; ++s) {
+                const size_t slot = size_t(s) * c.stride + i;
+                const uint32_t j = c.col_index[slot];
+                const glm::vec3 dij = di - glm::vec3(disp[j]);
+                float len;
+                const glm::vec3 n = direction((si - glm::vec3(start[j])) + dij, &len);
+                const float constraint = len - c.col_rest[slot];
+                float dl;
+                if (kXpbd) {
+                    const uint8_t g = c.col_group[slot];
+                    // Without stored multipliers (one iteration per substep) lambda is 0 here:
+                    // -C - 0 is -C exactly, so skipping the term changes no bit.
+                    const float lambda = c.lambda ? c.lambda[slot] : 0.0f;
+                    dl = (-constraint - c.groups.compliance[g] * lambda -
+                          c.groups.damping_ratio[g] * glm::dot(n, dij)) * coef[slot];
+                    if (c.lambda) c.lambda[slot] = lambda + dl;
+                } else {
+                    dl = -constraint * coef[slot];
+                }
+                dx += (wi * dl) * n;
+            }
+        }
+        const glm::vec3 dn = di + dx;
+        out[i] = Particle(dn, wi);
+        if (kCommit) x_out[i] = Particle(si + dn, wi);
+    }
+}
+
+/// IMPLICIT prediction: the target y = d h/h_prev + a h (h + h_prev)/2 (inertia and external
+/// forces, as predict<false>) and the first iterate d h/h_prev (inertia alone). The first iterate
+/// must not contain the external forces: at rest it is then exactly 0, and a step that stays at
+/// rest is one where the springs balance them exactly (see implicit_residual).
+inline void implicit_predict(const SubstepContext& c, const Particle* x, const Particle* d, Particle* target,
+                             Particle* first, uint32_t begin, uint32_t end) {
+    const float inv_hp = 1.0f / c.h_prev;
+    for (uint32_t i = begin; i < end; ++i) {
+        const float wi = x[i].w;
+        glm::vec3 inertia(0.0f), y(0.0f);
+        if (wi != 0.0f) {
+            inertia = glm::vec3(d[i]) * c.h_ratio;
+            y = inertia + external_accel(c, glm::vec3(d[i]) * inv_hp) * (c.h * c.accel_h);
+        }
+        target[i] = Particle(y, wi);
+        first[i] = Particle(inertia, wi);
+    }
+}
+
+/// IMPLICIT model: one substep is implicit Euler (Baraff and Witkin 1998), posed as minimising
+///   Phi(d) = sum_i |d_i - y_i|^2 / (2 w_i h^2) + sum_springs k/2 (|x_i - x_j| - L)^2
+/// (plus a dashpot kd along each spring) over the substep's displacements d, x = start + d. This
+/// kernel writes the force residual  r_i = -grad_i Phi = F_i - (d_i - y_i) / (w_i h^2)  (N; 0 for
+/// kinematic particles); Cloth::implicit_substep turns it into a step with a prefactored global
+/// solve. Any iteration of the form d += P^-1 r has grad Phi = 0 as its fixed point: at rest the
+/// first iterate is d = 0 (implicit_predict) and y = h^2 g, so a substep that stays at rest is
+/// one where the spring forces balance m g exactly, the springs' own equilibrium, whatever the
+/// iteration count (one Jacobi iteration of XPBD rests softer than its springs).
+inline void implicit_residual(const SubstepContext& c, const Particle* disp, const Particle* target,
+                              const Particle* start, Particle* residual, uint32_t begin, uint32_t end) {
+    const float kd_h = c.damping / c.h;
+    const float inv_h2 = 1.0f / (c.h * c.h);
+    for (uint32_t i = begin; i < end; ++i) {
+        const float wi = disp[i].w;
+        glm::vec3 r(0.0f);
+        if (wi != 0.0f) {
+            const glm::vec3 di(disp[i]);
+            const glm::vec3 si(start[i]);
+            const uint32_t count = c.nbr_count[i];
+            for (uint32_t s = 0; s < count; ++s) {
+                const size_t slot = size_t(s) * c.stride + i;
+                const uint8_t g = c.col_group[slot];
+                if (g >= DRAPE_GROUP_COUNT || !c.groups.active[g]) continue;
+                const uint32_t j = c.col_index[slot];
+                const glm::vec3 dij = di - glm::vec3(disp[j]);
+                float len;
+                const glm::vec3 n = direction((si - glm::vec3(start[j])) + dij, &len);
+                r -= (c.groups.stiffness[g] * (len - c.col_rest[slot]) + kd_h * glm::dot(n, dij)) * n;
+            }
+            r -= (di - glm::vec3(target[i])) * (inv_h2 / wi);
+        }
+        residual[i] = Particle(r, wi);
+    }
+}
+
+/// Tethers (long-range attachments, Kim, Chentanez and Mueller 2012): particle i may be at most
+/// `length[i]` from the kinematic particle `anchor[i]`; beyond that it is pulled back onto the
+/// sphere, and its displacement takes the same correction (no velocity away from the anchor).
+/// One-sided and local, so it runs after the solve in O(n) and stops the stretch a local solver
+/// cannot remove in few passes on a fine cloth. Particles without an anchor have length < 0.
+inline void tether(const uint32_t* anchor, const float* length, Particle* x, Particle* d, uint32_t begin,
+                   uint32_t end) {
+    for (uint32_t i = begin; i < end; ++i) {
+        const float limit = length[i];
+        if (limit < 0.0f || x[i].w == 0.0f) continue;
+        const glm::vec3 xi(x[i]);
+        float len;
+        const glm::vec3 n = direction(xi - glm::vec3(x[anchor[i]]), &len);
+        if (len <= limit) continue;
+        const glm::vec3 pull = n * (limit - len);
+        x[i] = Particle(xi + pull, x[i].w);
+        d[i] += Particle(pull, 0.0f);
+    }
+}
+
+}  // namespace drape::kernels
+#line 16 "plugin-native/src/core/cloth.h"
+// #include "backend/cpu/thread_pool.h"
+#line 1 "plugin-native/src/backend/cpu/thread_pool.h"
+// Persistent worker pool for CPU_THREADED. Workers spin briefly between the many short passes
+// of a step (a step is tens of barriers), then sleep on a condition variable when idle, so an
+// idle world costs no CPU. The paper woke four workers through a mutex per step; here a pass
+// costs one atomic increment to start and one to finish.
+
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace drape {
+
+class ThreadPool {
+public:
+    /// Below this many items a pass runs on the caller alone: a particle pass over fewer is a few
+    /// microseconds, about what waking and joining the workers costs.
+    static constexpr uint32_t kMinParallelCount = 2048;
+
+    /// threads: total including the calling thread (>= 1).
+    explicit ThreadPool(uint32_t threads);
+    ~ThreadPool();
+    ThreadPool(const ThreadPool&) = delete;
+    ThreadPool& operator=(const ThreadPool&) = delete;
+
+    uint32_t size() const { return uint32_t(workers_.size()) + 1; }
+
+    /// Runs fn(begin, end) over [0, count) split into size() contiguous ranges, one per thread;
+    /// returns when all are done. The split depends only on count and size().
+    template <class Fn>
+    void parallel_for(uint32_t count, Fn&& fn) {
+        const uint32_t n = size();
+        if (n == 1 || count < kMinParallelCount) {
+            fn(0u, count);
+            return;
+        }
+        auto job = [&](uint32_t t) {
+            uint64_t b = uint64_t(count) * t / n, e = uint64_t(count) * (t + 1) / n;
+            fn(uint32_t(b), uint32_t(e));
+        };
+        run(&invoke<decltype(job)>, &job);
+    }
+
+    /// Runs fn(thread_index) once on every thread (0 = caller).
+    template <class Fn>
+    void run_on_all(Fn&& fn) {
+        run(&invoke<Fn>, &fn);
+    }
+
+private:
+    using JobFn = void (*)(void*, uint32_t);
+    template <class F>
+    static void invoke(void* f, uint32_t t) {
+        (*static_cast<F*>(f))(t);
+    }
+    void run(JobFn fn, void* ctx);
+    void worker_main(uint32_t index);
+
+    std::vector<std::thread> workers_;
+    JobFn job_ = nullptr;
+    void* job_ctx_ = nullptr;
+    std::atomic<uint32_t> generation_{0};
+    std::atomic<uint32_t> pending_{0};
+    std::atomic<uint32_t> sleepers_{0};
+    std::atomic<bool> stop_{false};
+    std::mutex mutex_;
+    std::condition_variable wake_;
+};
+
+}  // namespace drape
+#line 17 "plugin-native/src/core/cloth.h"
+// #include "core/interaction.h"  // issue 5: colliders, drag, owner, sleep
+#line 1 "plugin-native/src/core/interaction.h"
+// Run-time state of what a cloth interacts with (issue 5): colliders, touch drag, grabs, the
+// owner transform, and sleeping. Owned by Cloth (member ix_); the Cloth member functions that use
+// it are defined in core/interaction.cpp, and Cloth::step calls three small hooks:
+//   skip_step_asleep() at the top, interaction_substep() after each substep's solve (on the
+//   committed positions), interaction_end_step() when the step is done.
+
+
+#include <cstdint>
+#include <vector>
+
+// #include <glm/gtc/quaternion.hpp>
+#line 1 "glm/gtc/quaternion.hpp"
+/// @ref gtc_quaternion
+/// @file glm/gtc/quaternion.hpp
+///
+/// @see core (dependence)
+/// @see gtc_constants (dependence)
+///
+/// @defgroup gtc_quaternion GLM_GTC_quaternion
+/// @ingroup gtc
+///
+/// Include <glm/gtc/quaternion.hpp> to use the features of this extension.
+///
+/// Defines a templated quaternion type and several quaternion operations.
+
+
+
+// Dependency:
+// #include "../gtc/constants.hpp"
+#line 1 "glm/gtc/constants.hpp"
+/// @ref gtc_constants
+/// @file glm/gtc/constants.hpp
+///
+/// @see core (dependence)
+///
+/// @defgroup gtc_constants GLM_GTC_constants
+/// @ingroup gtc
+///
+/// Include <glm/gtc/constants.hpp> to use the features of this extension.
+///
+/// Provide a list of constants and precomputed useful values.
+
+
+
+// Dependencies
+// #include "../ext/scalar_constants.hpp"
+#line 1 "glm/ext/scalar_constants.hpp"
+/// @ref ext_scalar_constants
+/// @file glm/ext/scalar_constants.hpp
+///
+/// @defgroup ext_scalar_constants GLM_EXT_scalar_constants
+/// @ingroup ext
+///
+/// Provides a list of constants and precomputed useful values.
+///
+/// Include <glm/ext/scalar_constants.hpp> to use the features of this extension.
+
+
+
+// Dependencies
+// #include "../detail/setup.hpp"
+#line 15 "glm/ext/scalar_constants.hpp"
+
+#if GLM_MESSAGES == GLM_ENABLE && !defined(GLM_EXT_INCLUDED)
+#	pragma message("GLM: GLM_EXT_scalar_constants extension included")
+#endif
+
+namespace glm
+{
+	/// @addtogroup ext_scalar_constants
+	/// @{
+
+	/// Return the epsilon constant for floating point types.
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType epsilon();
+
+	/// Return the pi constant for floating point types.
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType pi();
+
+	/// Return the value of cos(1 / 2) for floating point types.
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType cos_one_over_two();
+
+	/// @}
+} //namespace glm
+
+// #include "scalar_constants.inl"
+#line 1 "glm/ext/scalar_constants.inl"
+#include <limits>
+
+namespace glm
+{
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType epsilon()
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'epsilon' only accepts floating-point inputs");
+		return std::numeric_limits<genType>::epsilon();
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType pi()
+	{
+		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'pi' only accepts floating-point inputs");
+		return static_cast<genType>(3.14159265358979323846264338327950288);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType cos_one_over_two()
+	{
+		return genType(0.877582561890372716130286068203503191);
+	}
+} //namespace glm
+#line 41 "glm/ext/scalar_constants.hpp"
+#line 17 "glm/gtc/constants.hpp"
+
+#if GLM_MESSAGES == GLM_ENABLE && !defined(GLM_EXT_INCLUDED)
+#	pragma message("GLM: GLM_GTC_constants extension included")
+#endif
+
+namespace glm
+{
+	/// @addtogroup gtc_constants
+	/// @{
+
+	/// Return 0.
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType zero();
+
+	/// Return 1.
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType one();
+
+	/// Return pi * 2.
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType two_pi();
+
+	/// Return square root of pi.
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType root_pi();
+
+	/// Return pi / 2.
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType half_pi();
+
+	/// Return pi / 2 * 3.
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType three_over_two_pi();
+
+	/// Return pi / 4.
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType quarter_pi();
+
+	/// Return 1 / pi.
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType one_over_pi();
+
+	/// Return 1 / (pi * 2).
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType one_over_two_pi();
+
+	/// Return 2 / pi.
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType two_over_pi();
+
+	/// Return 4 / pi.
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType four_over_pi();
+
+	/// Return 2 / sqrt(pi).
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType two_over_root_pi();
+
+	/// Return 1 / sqrt(2).
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType one_over_root_two();
+
+	/// Return sqrt(pi / 2).
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType root_half_pi();
+
+	/// Return sqrt(2 * pi).
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType root_two_pi();
+
+	/// Return sqrt(ln(4)).
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType root_ln_four();
+
+	/// Return e constant.
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType e();
+
+	/// Return Euler's constant.
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType euler();
+
+	/// Return sqrt(2).
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType root_two();
+
+	/// Return sqrt(3).
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType root_three();
+
+	/// Return sqrt(5).
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType root_five();
+
+	/// Return ln(2).
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType ln_two();
+
+	/// Return ln(10).
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType ln_ten();
+
+	/// Return ln(ln(2)).
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType ln_ln_two();
+
+	/// Return 1 / 3.
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType third();
+
+	/// Return 2 / 3.
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType two_thirds();
+
+	/// Return the golden ratio constant.
+	/// @see gtc_constants
+	template<typename genType>
+	GLM_FUNC_DECL GLM_CONSTEXPR genType golden_ratio();
+
+	/// @}
+} //namespace glm
+
+// #include "constants.inl"
+#line 1 "glm/gtc/constants.inl"
+/// @ref gtc_constants
+
+namespace glm
+{
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType zero()
+	{
+		return genType(0);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType one()
+	{
+		return genType(1);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType two_pi()
+	{
+		return genType(6.28318530717958647692528676655900576);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType root_pi()
+	{
+		return genType(1.772453850905516027);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType half_pi()
+	{
+		return genType(1.57079632679489661923132169163975144);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType three_over_two_pi()
+	{
+		return genType(4.71238898038468985769396507491925432);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType quarter_pi()
+	{
+		return genType(0.785398163397448309615660845819875721);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType one_over_pi()
+	{
+		return genType(0.318309886183790671537767526745028724);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType one_over_two_pi()
+	{
+		return genType(0.159154943091895335768883763372514362);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType two_over_pi()
+	{
+		return genType(0.636619772367581343075535053490057448);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType four_over_pi()
+	{
+		return genType(1.273239544735162686151070106980114898);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType two_over_root_pi()
+	{
+		return genType(1.12837916709551257389615890312154517);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType one_over_root_two()
+	{
+		return genType(0.707106781186547524400844362104849039);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType root_half_pi()
+	{
+		return genType(1.253314137315500251);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType root_two_pi()
+	{
+		return genType(2.506628274631000502);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType root_ln_four()
+	{
+		return genType(1.17741002251547469);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType e()
+	{
+		return genType(2.71828182845904523536);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType euler()
+	{
+		return genType(0.577215664901532860606);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType root_two()
+	{
+		return genType(1.41421356237309504880168872420969808);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType root_three()
+	{
+		return genType(1.73205080756887729352744634150587236);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType root_five()
+	{
+		return genType(2.23606797749978969640917366873127623);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType ln_two()
+	{
+		return genType(0.693147180559945309417232121458176568);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType ln_ten()
+	{
+		return genType(2.30258509299404568401799145468436421);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType ln_ln_two()
+	{
+		return genType(-0.3665129205816643);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType third()
+	{
+		return genType(0.3333333333333333333333333333333333333333);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType two_thirds()
+	{
+		return genType(0.666666666666666666666666666666666666667);
+	}
+
+	template<typename genType>
+	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType golden_ratio()
+	{
+		return genType(1.61803398874989484820458683436563811);
+	}
+
+} //namespace glm
+#line 166 "glm/gtc/constants.hpp"
+#line 18 "glm/gtc/quaternion.hpp"
+// #include "../gtc/matrix_transform.hpp"
+#line 1 "glm/gtc/matrix_transform.hpp"
+/// @ref gtc_matrix_transform
+/// @file glm/gtc/matrix_transform.hpp
+///
+/// @see core (dependence)
+/// @see gtx_transform
+/// @see gtx_transform2
+///
+/// @defgroup gtc_matrix_transform GLM_GTC_matrix_transform
+/// @ingroup gtc
+///
+/// Include <glm/gtc/matrix_transform.hpp> to use the features of this extension.
+///
+/// Defines functions that generate common transformation matrices.
+///
+/// The matrices generated by this extension use standard OpenGL fixed-function
+/// conventions. For example, the lookAt function generates a transform from world
+/// space into the specific eye space that the projective matrix functions
+/// (perspective, ortho, etc) are designed to expect. The OpenGL compatibility
+/// specifications defines the particular layout of this eye space.
+
+
+
+// Dependencies
+// #include "../mat4x4.hpp"
+#line 1 "glm/mat4x4.hpp"
+/// @ref core
+/// @file glm/mat4x4.hpp
+
+
+// #include "./ext/matrix_double4x4.hpp"
+#line 1 "glm/ext/matrix_double4x4.hpp"
+/// @ref core
+/// @file glm/ext/matrix_double4x4.hpp
+
+
+// #include "../detail/type_mat4x4.hpp"
+#line 1 "glm/detail/type_mat4x4.hpp"
+/// @ref core
+/// @file glm/detail/type_mat4x4.hpp
+
+
+
+// #include "type_vec4.hpp"
+#line 7 "glm/detail/type_mat4x4.hpp"
+#include <limits>
+#include <cstddef>
+
+namespace glm
+{
+	template<typename T, qualifier Q>
+	struct mat<4, 4, T, Q>
+	{
+		typedef vec<4, T, Q> col_type;
+		typedef vec<4, T, Q> row_type;
+		typedef mat<4, 4, T, Q> type;
+		typedef mat<4, 4, T, Q> transpose_type;
+		typedef T value_type;
+
+	private:
+		col_type value[4];
+
+	public:
+		// -- Accesses --
+
+		typedef length_t length_type;
+		GLM_FUNC_DECL static GLM_CONSTEXPR length_type length(){return 4;}
+
+		GLM_FUNC_DECL col_type & operator[](length_type i);
+		GLM_FUNC_DECL GLM_CONSTEXPR col_type const& operator[](length_type i) const;
+
+		// -- Constructors --
+
+		GLM_FUNC_DECL GLM_CONSTEXPR mat() GLM_DEFAULT;
+		template<qualifier P>
+		GLM_FUNC_DECL GLM_CONSTEXPR mat(mat<4, 4, T, P> const& m);
+
+		GLM_FUNC_DECL explicit GLM_CONSTEXPR mat(T const& x);
+		GLM_FUNC_DECL GLM_CONSTEXPR mat(
+			T const& x0, T const& y0, T const& z0, T const& w0,
+			T const& x1, T const& y1, T const& z1, T const& w1,
+			T const& x2, T const& y2, T const& z2, T const& w2,
+			T const& x3, T const& y3, T const& z3, T const& w3);
+		GLM_FUNC_DECL GLM_CONSTEXPR mat(
+			col_type const& v0,
+			col_type const& v1,
+			col_type const& v2,
+			col_type const& v3);
+
+		// -- Conversions --
+
+		template<
+			typename X1, typename Y1, typename Z1, typename W1,
+			typename X2, typename Y2, typename Z2, typename W2,
+			typename X3, typename Y3, typename Z3, typename W3,
+			typename X4, typename Y4, typename Z4, typename W4>
+		GLM_FUNC_DECL GLM_CONSTEXPR mat(
+			X1 const& x1, Y1 const& y1, Z1 const& z1, W1 const& w1,
+			X2 const& x2, Y2 const& y2, Z2 const& z2, W2 const& w2,
+			X3 const& x3, Y3 const& y3, Z3 const& z3, W3 const& w3,
+			X4 const& x4, Y4 const& y4, Z4 const& z4, W4 const& w4);
+
+		template<typename V1, typename V2, typename V3, typename V4>
+		GLM_FUNC_DECL GLM_CONSTEXPR mat(
+			vec<4, V1, Q> const& v1,
+			vec<4, V2, Q> const& v2,
+			vec<4, V3, Q> const& v3,
+			vec<4, V4, Q> const& v4);
+
+		// -- Matrix conversions --
+
+		template<typename U, qualifier P>
+		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<4, 4, U, P> const& m);
+
+		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<2, 2, T, Q> const& x);
+		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<3, 3, T, Q> const& x);
+		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<2, 3, T, Q> const& x);
+		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<3, 2, T, Q> const& x);
+		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<2, 4, T, Q> const& x);
+		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<4, 2, T, Q> const& x);
+		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<3, 4, T, Q> const& x);
+		GLM_FUNC_DECL GLM_EXPLICIT GLM_CONSTEXPR mat(mat<4, 3, T, Q> const& x);
+
+		// -- Unary arithmetic operators --
+
+		template<typename U>
+		GLM_FUNC_DECL mat<4, 4, T, Q> & operator=(mat<4, 4, U, Q> const& m);
+		template<typename U>
+		GLM_FUNC_DECL mat<4, 4, T, Q> & operator+=(U s);
+		template<typename U>
+		GLM_FUNC_DECL mat<4, 4, T, Q> & operator+=(mat<4, 4, U, Q> const& m);
+		template<typename U>
+		GLM_FUNC_DECL mat<4, 4, T, Q> & operator-=(U s);
+		template<typename U>
+		GLM_FUNC_DECL mat<4, 4, T, Q> & operator-=(mat<4, 4, U, Q> const& m);
+		template<typename U>
+		GLM_FUNC_DECL mat<4, 4, T, Q> & operator*=(U s);
+		template<typename U>
+		GLM_FUNC_DECL mat<4, 4, T, Q> & operator*=(mat<4, 4, U, Q> const& m);
+		template<typename U>
+		GLM_FUNC_DECL mat<4, 4, T, Q> & operator/=(U s);
+		template<typename U>
+		GLM_FUNC_DECL mat<4, 4, T, Q> & operator/=(mat<4, 4, U, Q> const& m);
+
+		// -- Increment and decrement operators --
+
+		GLM_FUNC_DECL mat<4, 4, T, Q> & operator++();
+		GLM_FUNC_DECL mat<4, 4, T, Q> & operator--();
+		GLM_FUNC_DECL mat<4, 4, T, Q> operator++(int);
+		GLM_FUNC_DECL mat<4, 4, T, Q> operator--(int);
+	};
+
+	// -- Unary operators --
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL mat<4, 4, T, Q> operator+(mat<4, 4, T, Q> const& m);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL mat<4, 4, T, Q> operator-(mat<4, 4, T, Q> const& m);
+
+	// -- Binary operators --
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL mat<4, 4, T, Q> operator+(mat<4, 4, T, Q> const& m, T const& s);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL mat<4, 4, T, Q> operator+(T const& s, mat<4, 4, T, Q> const& m);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL mat<4, 4, T, Q> operator+(mat<4, 4, T, Q> const& m1, mat<4, 4, T, Q> const& m2);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL mat<4, 4, T, Q> operator-(mat<4, 4, T, Q> const& m, T const& s);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL mat<4, 4, T, Q> operator-(T const& s, mat<4, 4, T, Q> const& m);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL mat<4, 4, T, Q> operator-(mat<4, 4, T, Q> const& m1,	mat<4, 4, T, Q> const& m2);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL mat<4, 4, T, Q> operator*(mat<4, 4, T, Q> const& m, T const& s);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL mat<4, 4, T, Q> operator*(T const& s, mat<4, 4, T, Q> const& m);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL typename mat<4, 4, T, Q>::col_type operator*(mat<4, 4, T, Q> const& m, typename mat<4, 4, T, Q>::row_type const& v);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL typename mat<4, 4, T, Q>::row_type operator*(typename mat<4, 4, T, Q>::col_type const& v, mat<4, 4, T, Q> const& m);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL mat<2, 4, T, Q> operator*(mat<4, 4, T, Q> const& m1, mat<2, 4, T, Q> const& m2);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL mat<3, 4, T, Q> operator*(mat<4, 4, T, Q> const& m1, mat<3, 4, T, Q> const& m2);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL mat<4, 4, T, Q> operator*(mat<4, 4, T, Q> const& m1, mat<4, 4, T, Q> const& m2);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL mat<4, 4, T, Q> operator/(mat<4, 4, T, Q> const& m, T const& s);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL mat<4, 4, T, Q> operator/(T const& s, mat<4, 4, T, Q> const& m);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL typename mat<4, 4, T, Q>::col_type operator/(mat<4, 4, T, Q> const& m, typename mat<4, 4, T, Q>::row_type const& v);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL typename mat<4, 4, T, Q>::row_type operator/(typename mat<4, 4, T, Q>::col_type const& v, mat<4, 4, T, Q> const& m);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL mat<4, 4, T, Q> operator/(mat<4, 4, T, Q> const& m1,	mat<4, 4, T, Q> const& m2);
+
+	// -- Boolean operators --
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL bool operator==(mat<4, 4, T, Q> const& m1, mat<4, 4, T, Q> const& m2);
+
+	template<typename T, qualifier Q>
+	GLM_FUNC_DECL bool operator!=(mat<4, 4, T, Q> const& m1, mat<4, 4, T, Q> const& m2);
+}//namespace glm
+
+#ifndef GLM_EXTERNAL_TEMPLATE
+// #include "type_mat4x4.inl"
+#line 1 "glm/detail/type_mat4x4.inl"
+// #include "../matrix.hpp"
+#line 1 "glm/matrix.hpp"
+/// @ref core
+/// @file glm/matrix.hpp
+///
+/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.6 Matrix Functions</a>
+///
+/// @defgroup core_func_matrix Matrix functions
+/// @ingroup core
+///
+/// Provides GLSL matrix functions.
+///
+/// Include <glm/matrix.hpp> to use these core features.
+
+
+
+// Dependencies
+// #include "detail/qualifier.hpp"
+#line 17 "glm/matrix.hpp"
+// #include "detail/setup.hpp"
+#line 18 "glm/matrix.hpp"
+// #include "vec2.hpp"
+#line 1 "glm/vec2.hpp"
+/// @ref core
+/// @file glm/vec2.hpp
+
+
+// #include "./ext/vector_bool2.hpp"
+#line 1 "glm/ext/vector_bool2.hpp"
+/// @ref core
+/// @file glm/ext/vector_bool2.hpp
+
+
+// #include "../detail/type_vec2.hpp"
 #line 6 "glm/ext/vector_bool2.hpp"
 
 namespace glm
@@ -17723,4145 +22880,6 @@ namespace detail
 // #include "detail/func_matrix.inl"
 #line 1 "glm/detail/func_matrix.inl"
 // #include "../geometric.hpp"
-#line 1 "glm/geometric.hpp"
-/// @ref core
-/// @file glm/geometric.hpp
-///
-/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
-///
-/// @defgroup core_func_geometric Geometric functions
-/// @ingroup core
-///
-/// These operate on vectors as vectors, not component-wise.
-///
-/// Include <glm/geometric.hpp> to use these core features.
-
-
-
-// #include "detail/type_vec3.hpp"
-#line 16 "glm/geometric.hpp"
-
-namespace glm
-{
-	/// @addtogroup core_func_geometric
-	/// @{
-
-	/// Returns the length of x, i.e., sqrt(x * x).
-	///
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T Floating-point scalar types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/length.xml">GLSL length man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL T length(vec<L, T, Q> const& x);
-
-	/// Returns the distance betwwen p0 and p1, i.e., length(p0 - p1).
-	///
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T Floating-point scalar types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/distance.xml">GLSL distance man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL T distance(vec<L, T, Q> const& p0, vec<L, T, Q> const& p1);
-
-	/// Returns the dot product of x and y, i.e., result = x * y.
-	///
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T Floating-point scalar types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/dot.xml">GLSL dot man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL T dot(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
-
-	/// Returns the cross product of x and y.
-	///
-	/// @tparam T Floating-point scalar types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/cross.xml">GLSL cross man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL vec<3, T, Q> cross(vec<3, T, Q> const& x, vec<3, T, Q> const& y);
-
-	/// Returns a vector in the same direction as x but with length of 1.
-	/// According to issue 10 GLSL 1.10 specification, if length(x) == 0 then result is undefined and generate an error.
-	///
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T Floating-point scalar types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/normalize.xml">GLSL normalize man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> normalize(vec<L, T, Q> const& x);
-
-	/// If dot(Nref, I) < 0.0, return N, otherwise, return -N.
-	///
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T Floating-point scalar types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/faceforward.xml">GLSL faceforward man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> faceforward(
-		vec<L, T, Q> const& N,
-		vec<L, T, Q> const& I,
-		vec<L, T, Q> const& Nref);
-
-	/// For the incident vector I and surface orientation N,
-	/// returns the reflection direction : result = I - 2.0 * dot(N, I) * N.
-	///
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T Floating-point scalar types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/reflect.xml">GLSL reflect man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> reflect(
-		vec<L, T, Q> const& I,
-		vec<L, T, Q> const& N);
-
-	/// For the incident vector I and surface normal N,
-	/// and the ratio of indices of refraction eta,
-	/// return the refraction vector.
-	///
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T Floating-point scalar types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/refract.xml">GLSL refract man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.5 Geometric Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> refract(
-		vec<L, T, Q> const& I,
-		vec<L, T, Q> const& N,
-		T eta);
-
-	/// @}
-}//namespace glm
-
-// #include "detail/func_geometric.inl"
-#line 1 "glm/detail/func_geometric.inl"
-// #include "../exponential.hpp"
-#line 1 "glm/exponential.hpp"
-/// @ref core
-/// @file glm/exponential.hpp
-///
-/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.2 Exponential Functions</a>
-///
-/// @defgroup core_func_exponential Exponential functions
-/// @ingroup core
-///
-/// Provides GLSL exponential functions
-///
-/// These all operate component-wise. The description is per component.
-///
-/// Include <glm/exponential.hpp> to use these core features.
-
-
-
-// #include "detail/type_vec1.hpp"
-#line 1 "glm/detail/type_vec1.hpp"
-/// @ref core
-/// @file glm/detail/type_vec1.hpp
-
-
-
-// #include "qualifier.hpp"
-#line 7 "glm/detail/type_vec1.hpp"
-#if GLM_CONFIG_SWIZZLE == GLM_SWIZZLE_OPERATOR
-// #	include "_swizzle.hpp"
-#line 9 "glm/detail/type_vec1.hpp"
-#elif GLM_CONFIG_SWIZZLE == GLM_SWIZZLE_FUNCTION
-// #	include "_swizzle_func.hpp"
-#line 11 "glm/detail/type_vec1.hpp"
-#endif
-#include <cstddef>
-
-namespace glm
-{
-	template<typename T, qualifier Q>
-	struct vec<1, T, Q>
-	{
-		// -- Implementation detail --
-
-		typedef T value_type;
-		typedef vec<1, T, Q> type;
-		typedef vec<1, bool, Q> bool_type;
-
-		// -- Data --
-
-#		if GLM_SILENT_WARNINGS == GLM_ENABLE
-#			if GLM_COMPILER & GLM_COMPILER_GCC
-#				pragma GCC diagnostic push
-#				pragma GCC diagnostic ignored "-Wpedantic"
-#			elif GLM_COMPILER & GLM_COMPILER_CLANG
-#				pragma clang diagnostic push
-#				pragma clang diagnostic ignored "-Wgnu-anonymous-struct"
-#				pragma clang diagnostic ignored "-Wnested-anon-types"
-#			elif GLM_COMPILER & GLM_COMPILER_VC
-#				pragma warning(push)
-#				pragma warning(disable: 4201)  // nonstandard extension used : nameless struct/union
-#			endif
-#		endif
-
-#		if GLM_CONFIG_XYZW_ONLY
-			T x;
-#		elif GLM_CONFIG_ANONYMOUS_STRUCT == GLM_ENABLE
-			union
-			{
-				T x;
-				T r;
-				T s;
-
-				typename detail::storage<1, T, detail::is_aligned<Q>::value>::type data;
-/*
-#				if GLM_CONFIG_SWIZZLE == GLM_SWIZZLE_OPERATOR
-					_GLM_SWIZZLE1_2_MEMBERS(T, Q, x)
-					_GLM_SWIZZLE1_2_MEMBERS(T, Q, r)
-					_GLM_SWIZZLE1_2_MEMBERS(T, Q, s)
-					_GLM_SWIZZLE1_3_MEMBERS(T, Q, x)
-					_GLM_SWIZZLE1_3_MEMBERS(T, Q, r)
-					_GLM_SWIZZLE1_3_MEMBERS(T, Q, s)
-					_GLM_SWIZZLE1_4_MEMBERS(T, Q, x)
-					_GLM_SWIZZLE1_4_MEMBERS(T, Q, r)
-					_GLM_SWIZZLE1_4_MEMBERS(T, Q, s)
-#				endif
-*/
-			};
-#		else
-			union {T x, r, s;};
-/*
-#			if GLM_CONFIG_SWIZZLE == GLM_SWIZZLE_FUNCTION
-				GLM_SWIZZLE_GEN_VEC_FROM_VEC1(T, Q)
-#			endif
-*/
-#		endif
-
-#		if GLM_SILENT_WARNINGS == GLM_ENABLE
-#			if GLM_COMPILER & GLM_COMPILER_CLANG
-#				pragma clang diagnostic pop
-#			elif GLM_COMPILER & GLM_COMPILER_GCC
-#				pragma GCC diagnostic pop
-#			elif GLM_COMPILER & GLM_COMPILER_VC
-#				pragma warning(pop)
-#			endif
-#		endif
-
-		// -- Component accesses --
-
-		/// Return the count of components of the vector
-		typedef length_t length_type;
-		GLM_FUNC_DECL static GLM_CONSTEXPR length_type length(){return 1;}
-
-		GLM_FUNC_DECL GLM_CONSTEXPR T & operator[](length_type i);
-		GLM_FUNC_DECL GLM_CONSTEXPR T const& operator[](length_type i) const;
-
-		// -- Implicit basic constructors --
-
-		GLM_FUNC_DECL GLM_CONSTEXPR vec() GLM_DEFAULT;
-		GLM_FUNC_DECL GLM_CONSTEXPR vec(vec const& v) GLM_DEFAULT;
-		template<qualifier P>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec(vec<1, T, P> const& v);
-
-		// -- Explicit basic constructors --
-
-		GLM_FUNC_DECL GLM_CONSTEXPR explicit vec(T scalar);
-
-		// -- Conversion vector constructors --
-
-		/// Explicit conversions (From section 5.4.1 Conversion and scalar constructors of GLSL 1.30.08 specification)
-		template<typename U, qualifier P>
-		GLM_FUNC_DECL GLM_CONSTEXPR GLM_EXPLICIT vec(vec<2, U, P> const& v);
-		/// Explicit conversions (From section 5.4.1 Conversion and scalar constructors of GLSL 1.30.08 specification)
-		template<typename U, qualifier P>
-		GLM_FUNC_DECL GLM_CONSTEXPR GLM_EXPLICIT vec(vec<3, U, P> const& v);
-		/// Explicit conversions (From section 5.4.1 Conversion and scalar constructors of GLSL 1.30.08 specification)
-		template<typename U, qualifier P>
-		GLM_FUNC_DECL GLM_CONSTEXPR GLM_EXPLICIT vec(vec<4, U, P> const& v);
-
-		/// Explicit conversions (From section 5.4.1 Conversion and scalar constructors of GLSL 1.30.08 specification)
-		template<typename U, qualifier P>
-		GLM_FUNC_DECL GLM_CONSTEXPR GLM_EXPLICIT vec(vec<1, U, P> const& v);
-
-		// -- Swizzle constructors --
-/*
-#		if GLM_CONFIG_SWIZZLE == GLM_SWIZZLE_OPERATOR
-			template<int E0>
-			GLM_FUNC_DECL GLM_CONSTEXPR vec(detail::_swizzle<1, T, Q, E0, -1,-2,-3> const& that)
-			{
-				*this = that();
-			}
-#		endif//GLM_CONFIG_SWIZZLE == GLM_SWIZZLE_OPERATOR
-*/
-		// -- Unary arithmetic operators --
-
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator=(vec const& v) GLM_DEFAULT;
-
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator=(vec<1, U, Q> const& v);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator+=(U scalar);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator+=(vec<1, U, Q> const& v);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator-=(U scalar);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator-=(vec<1, U, Q> const& v);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator*=(U scalar);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator*=(vec<1, U, Q> const& v);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator/=(U scalar);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator/=(vec<1, U, Q> const& v);
-
-		// -- Increment and decrement operators --
-
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator++();
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator--();
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator++(int);
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator--(int);
-
-		// -- Unary bit operators --
-
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator%=(U scalar);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator%=(vec<1, U, Q> const& v);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator&=(U scalar);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator&=(vec<1, U, Q> const& v);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator|=(U scalar);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator|=(vec<1, U, Q> const& v);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator^=(U scalar);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator^=(vec<1, U, Q> const& v);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator<<=(U scalar);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator<<=(vec<1, U, Q> const& v);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator>>=(U scalar);
-		template<typename U>
-		GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> & operator>>=(vec<1, U, Q> const& v);
-	};
-
-	// -- Unary operators --
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator+(vec<1, T, Q> const& v);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator-(vec<1, T, Q> const& v);
-
-	// -- Binary operators --
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator+(vec<1, T, Q> const& v, T scalar);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator+(T scalar, vec<1, T, Q> const& v);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator+(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator-(vec<1, T, Q> const& v, T scalar);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator-(T scalar, vec<1, T, Q> const& v);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator-(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator*(vec<1, T, Q> const& v, T scalar);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator*(T scalar, vec<1, T, Q> const& v);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator*(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator/(vec<1, T, Q> const& v, T scalar);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator/(T scalar, vec<1, T, Q> const& v);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator/(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator%(vec<1, T, Q> const& v, T scalar);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator%(T scalar, vec<1, T, Q> const& v);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator%(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator&(vec<1, T, Q> const& v, T scalar);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator&(T scalar, vec<1, T, Q> const& v);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator&(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator|(vec<1, T, Q> const& v, T scalar);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator|(T scalar, vec<1, T, Q> const& v);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator|(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator^(vec<1, T, Q> const& v, T scalar);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator^(T scalar, vec<1, T, Q> const& v);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator^(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator<<(vec<1, T, Q> const& v, T scalar);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator<<(T scalar, vec<1, T, Q> const& v);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator<<(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator>>(vec<1, T, Q> const& v, T scalar);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator>>(T scalar, vec<1, T, Q> const& v);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator>>(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, T, Q> operator~(vec<1, T, Q> const& v);
-
-	// -- Boolean operators --
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR bool operator==(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR bool operator!=(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2);
-
-	template<qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, bool, Q> operator&&(vec<1, bool, Q> const& v1, vec<1, bool, Q> const& v2);
-
-	template<qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<1, bool, Q> operator||(vec<1, bool, Q> const& v1, vec<1, bool, Q> const& v2);
-}//namespace glm
-
-#ifndef GLM_EXTERNAL_TEMPLATE
-// #include "type_vec1.inl"
-#line 1 "glm/detail/type_vec1.inl"
-/// @ref core
-
-// #include "./compute_vector_relational.hpp"
-#line 4 "glm/detail/type_vec1.inl"
-
-namespace glm
-{
-	// -- Implicit basic constructors --
-
-#	if GLM_CONFIG_DEFAULTED_FUNCTIONS == GLM_DISABLE
-		template<typename T, qualifier Q>
-		GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q>::vec()
-#			if GLM_CONFIG_CTOR_INIT != GLM_CTOR_INIT_DISABLE
-				: x(0)
-#			endif
-		{}
-
-		template<typename T, qualifier Q>
-		GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q>::vec(vec<1, T, Q> const& v)
-			: x(v.x)
-		{}
-#	endif
-
-	template<typename T, qualifier Q>
-	template<qualifier P>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q>::vec(vec<1, T, P> const& v)
-		: x(v.x)
-	{}
-
-	// -- Explicit basic constructors --
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q>::vec(T scalar)
-		: x(scalar)
-	{}
-
-	// -- Conversion vector constructors --
-
-	template<typename T, qualifier Q>
-	template<typename U, qualifier P>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q>::vec(vec<1, U, P> const& v)
-		: x(static_cast<T>(v.x))
-	{}
-
-	template<typename T, qualifier Q>
-	template<typename U, qualifier P>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q>::vec(vec<2, U, P> const& v)
-		: x(static_cast<T>(v.x))
-	{}
-
-	template<typename T, qualifier Q>
-	template<typename U, qualifier P>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q>::vec(vec<3, U, P> const& v)
-		: x(static_cast<T>(v.x))
-	{}
-
-	template<typename T, qualifier Q>
-	template<typename U, qualifier P>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q>::vec(vec<4, U, P> const& v)
-		: x(static_cast<T>(v.x))
-	{}
-
-	// -- Component accesses --
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR T & vec<1, T, Q>::operator[](typename vec<1, T, Q>::length_type)
-	{
-		return x;
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR T const& vec<1, T, Q>::operator[](typename vec<1, T, Q>::length_type) const
-	{
-		return x;
-	}
-
-	// -- Unary arithmetic operators --
-
-#	if GLM_CONFIG_DEFAULTED_FUNCTIONS == GLM_DISABLE
-		template<typename T, qualifier Q>
-		GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator=(vec<1, T, Q> const& v)
-		{
-			this->x = v.x;
-			return *this;
-		}
-#	endif
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator=(vec<1, U, Q> const& v)
-	{
-		this->x = static_cast<T>(v.x);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator+=(U scalar)
-	{
-		this->x += static_cast<T>(scalar);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator+=(vec<1, U, Q> const& v)
-	{
-		this->x += static_cast<T>(v.x);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator-=(U scalar)
-	{
-		this->x -= static_cast<T>(scalar);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator-=(vec<1, U, Q> const& v)
-	{
-		this->x -= static_cast<T>(v.x);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator*=(U scalar)
-	{
-		this->x *= static_cast<T>(scalar);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator*=(vec<1, U, Q> const& v)
-	{
-		this->x *= static_cast<T>(v.x);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator/=(U scalar)
-	{
-		this->x /= static_cast<T>(scalar);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator/=(vec<1, U, Q> const& v)
-	{
-		this->x /= static_cast<T>(v.x);
-		return *this;
-	}
-
-	// -- Increment and decrement operators --
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator++()
-	{
-		++this->x;
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator--()
-	{
-		--this->x;
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> vec<1, T, Q>::operator++(int)
-	{
-		vec<1, T, Q> Result(*this);
-		++*this;
-		return Result;
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> vec<1, T, Q>::operator--(int)
-	{
-		vec<1, T, Q> Result(*this);
-		--*this;
-		return Result;
-	}
-
-	// -- Unary bit operators --
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator%=(U scalar)
-	{
-		this->x %= static_cast<T>(scalar);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator%=(vec<1, U, Q> const& v)
-	{
-		this->x %= static_cast<T>(v.x);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator&=(U scalar)
-	{
-		this->x &= static_cast<T>(scalar);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator&=(vec<1, U, Q> const& v)
-	{
-		this->x &= static_cast<T>(v.x);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator|=(U scalar)
-	{
-		this->x |= static_cast<T>(scalar);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator|=(vec<1, U, Q> const& v)
-	{
-		this->x |= U(v.x);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator^=(U scalar)
-	{
-		this->x ^= static_cast<T>(scalar);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator^=(vec<1, U, Q> const& v)
-	{
-		this->x ^= static_cast<T>(v.x);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator<<=(U scalar)
-	{
-		this->x <<= static_cast<T>(scalar);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator<<=(vec<1, U, Q> const& v)
-	{
-		this->x <<= static_cast<T>(v.x);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator>>=(U scalar)
-	{
-		this->x >>= static_cast<T>(scalar);
-		return *this;
-	}
-
-	template<typename T, qualifier Q>
-	template<typename U>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> & vec<1, T, Q>::operator>>=(vec<1, U, Q> const& v)
-	{
-		this->x >>= static_cast<T>(v.x);
-		return *this;
-	}
-
-	// -- Unary constant operators --
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator+(vec<1, T, Q> const& v)
-	{
-		return v;
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator-(vec<1, T, Q> const& v)
-	{
-		return vec<1, T, Q>(
-			-v.x);
-	}
-
-	// -- Binary arithmetic operators --
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator+(vec<1, T, Q> const& v, T scalar)
-	{
-		return vec<1, T, Q>(
-			v.x + scalar);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator+(T scalar, vec<1, T, Q> const& v)
-	{
-		return vec<1, T, Q>(
-			scalar + v.x);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator+(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
-	{
-		return vec<1, T, Q>(
-			v1.x + v2.x);
-	}
-
-	//operator-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator-(vec<1, T, Q> const& v, T scalar)
-	{
-		return vec<1, T, Q>(
-			v.x - scalar);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator-(T scalar, vec<1, T, Q> const& v)
-	{
-		return vec<1, T, Q>(
-			scalar - v.x);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator-(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
-	{
-		return vec<1, T, Q>(
-			v1.x - v2.x);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator*(vec<1, T, Q> const& v, T scalar)
-	{
-		return vec<1, T, Q>(
-			v.x * scalar);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator*(T scalar, vec<1, T, Q> const& v)
-	{
-		return vec<1, T, Q>(
-			scalar * v.x);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator*(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
-	{
-		return vec<1, T, Q>(
-			v1.x * v2.x);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator/(vec<1, T, Q> const& v, T scalar)
-	{
-		return vec<1, T, Q>(
-			v.x / scalar);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator/(T scalar, vec<1, T, Q> const& v)
-	{
-		return vec<1, T, Q>(
-			scalar / v.x);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator/(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
-	{
-		return vec<1, T, Q>(
-			v1.x / v2.x);
-	}
-
-	// -- Binary bit operators --
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator%(vec<1, T, Q> const& v, T scalar)
-	{
-		return vec<1, T, Q>(
-			v.x % scalar);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator%(T scalar, vec<1, T, Q> const& v)
-	{
-		return vec<1, T, Q>(
-			scalar % v.x);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator%(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
-	{
-		return vec<1, T, Q>(
-			v1.x % v2.x);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator&(vec<1, T, Q> const& v, T scalar)
-	{
-		return vec<1, T, Q>(
-			v.x & scalar);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator&(T scalar, vec<1, T, Q> const& v)
-	{
-		return vec<1, T, Q>(
-			scalar & v.x);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator&(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
-	{
-		return vec<1, T, Q>(
-			v1.x & v2.x);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator|(vec<1, T, Q> const& v, T scalar)
-	{
-		return vec<1, T, Q>(
-			v.x | scalar);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator|(T scalar, vec<1, T, Q> const& v)
-	{
-		return vec<1, T, Q>(
-			scalar | v.x);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator|(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
-	{
-		return vec<1, T, Q>(
-			v1.x | v2.x);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator^(vec<1, T, Q> const& v, T scalar)
-	{
-		return vec<1, T, Q>(
-			v.x ^ scalar);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator^(T scalar, vec<1, T, Q> const& v)
-	{
-		return vec<1, T, Q>(
-			scalar ^ v.x);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator^(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
-	{
-		return vec<1, T, Q>(
-			v1.x ^ v2.x);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator<<(vec<1, T, Q> const& v, T scalar)
-	{
-		return vec<1, T, Q>(
-			static_cast<T>(v.x << scalar));
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator<<(T scalar, vec<1, T, Q> const& v)
-	{
-		return vec<1, T, Q>(
-			static_cast<T>(scalar << v.x));
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator<<(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
-	{
-		return vec<1, T, Q>(
-			static_cast<T>(v1.x << v2.x));
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator>>(vec<1, T, Q> const& v, T scalar)
-	{
-		return vec<1, T, Q>(
-			static_cast<T>(v.x >> scalar));
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator>>(T scalar, vec<1, T, Q> const& v)
-	{
-		return vec<1, T, Q>(
-			static_cast<T>(scalar >> v.x));
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator>>(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
-	{
-		return vec<1, T, Q>(
-			static_cast<T>(v1.x >> v2.x));
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, T, Q> operator~(vec<1, T, Q> const& v)
-	{
-		return vec<1, T, Q>(
-			~v.x);
-	}
-
-	// -- Boolean operators --
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR bool operator==(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
-	{
-		return detail::compute_equal<T, std::numeric_limits<T>::is_iec559>::call(v1.x, v2.x);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR bool operator!=(vec<1, T, Q> const& v1, vec<1, T, Q> const& v2)
-	{
-		return !(v1 == v2);
-	}
-
-	template<qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, bool, Q> operator&&(vec<1, bool, Q> const& v1, vec<1, bool, Q> const& v2)
-	{
-		return vec<1, bool, Q>(v1.x && v2.x);
-	}
-
-	template<qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<1, bool, Q> operator||(vec<1, bool, Q> const& v1, vec<1, bool, Q> const& v2)
-	{
-		return vec<1, bool, Q>(v1.x || v2.x);
-	}
-}//namespace glm
-#line 308 "glm/detail/type_vec1.hpp"
-#endif//GLM_EXTERNAL_TEMPLATE
-#line 18 "glm/exponential.hpp"
-// #include "detail/type_vec2.hpp"
-#line 19 "glm/exponential.hpp"
-// #include "detail/type_vec3.hpp"
-#line 20 "glm/exponential.hpp"
-// #include "detail/type_vec4.hpp"
-#line 21 "glm/exponential.hpp"
-#include <cmath>
-
-namespace glm
-{
-	/// @addtogroup core_func_exponential
-	/// @{
-
-	/// Returns 'base' raised to the power 'exponent'.
-	///
-	/// @param base Floating point value. pow function is defined for input values of 'base' defined in the range (inf-, inf+) in the limit of the type qualifier.
-	/// @param exponent Floating point value representing the 'exponent'.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/pow.xml">GLSL pow man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.2 Exponential Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> pow(vec<L, T, Q> const& base, vec<L, T, Q> const& exponent);
-
-	/// Returns the natural exponentiation of x, i.e., e^x.
-	///
-	/// @param v exp function is defined for input values of v defined in the range (inf-, inf+) in the limit of the type qualifier.
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T Floating-point scalar types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/exp.xml">GLSL exp man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.2 Exponential Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> exp(vec<L, T, Q> const& v);
-
-	/// Returns the natural logarithm of v, i.e.,
-	/// returns the value y which satisfies the equation x = e^y.
-	/// Results are undefined if v <= 0.
-	///
-	/// @param v log function is defined for input values of v defined in the range (0, inf+) in the limit of the type qualifier.
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T Floating-point scalar types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/log.xml">GLSL log man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.2 Exponential Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> log(vec<L, T, Q> const& v);
-
-	/// Returns 2 raised to the v power.
-	///
-	/// @param v exp2 function is defined for input values of v defined in the range (inf-, inf+) in the limit of the type qualifier.
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T Floating-point scalar types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/exp2.xml">GLSL exp2 man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.2 Exponential Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> exp2(vec<L, T, Q> const& v);
-
-	/// Returns the base 2 log of x, i.e., returns the value y,
-	/// which satisfies the equation x = 2 ^ y.
-	///
-	/// @param v log2 function is defined for input values of v defined in the range (0, inf+) in the limit of the type qualifier.
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T Floating-point scalar types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/log2.xml">GLSL log2 man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.2 Exponential Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> log2(vec<L, T, Q> const& v);
-
-	/// Returns the positive square root of v.
-	///
-	/// @param v sqrt function is defined for input values of v defined in the range [0, inf+) in the limit of the type qualifier.
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T Floating-point scalar types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/sqrt.xml">GLSL sqrt man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.2 Exponential Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> sqrt(vec<L, T, Q> const& v);
-
-	/// Returns the reciprocal of the positive square root of v.
-	///
-	/// @param v inversesqrt function is defined for input values of v defined in the range [0, inf+) in the limit of the type qualifier.
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T Floating-point scalar types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/inversesqrt.xml">GLSL inversesqrt man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.2 Exponential Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> inversesqrt(vec<L, T, Q> const& v);
-
-	/// @}
-}//namespace glm
-
-// #include "detail/func_exponential.inl"
-#line 1 "glm/detail/func_exponential.inl"
-/// @ref core
-/// @file glm/detail/func_exponential.inl
-
-// #include "../vector_relational.hpp"
-#line 1 "glm/vector_relational.hpp"
-/// @ref core
-/// @file glm/vector_relational.hpp
-///
-/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
-///
-/// @defgroup core_func_vector_relational Vector Relational Functions
-/// @ingroup core
-///
-/// Relational and equality operators (<, <=, >, >=, ==, !=) are defined to
-/// operate on scalars and produce scalar Boolean results. For vector results,
-/// use the following built-in functions.
-///
-/// In all cases, the sizes of all the input and return vectors for any particular
-/// call must match.
-///
-/// Include <glm/vector_relational.hpp> to use these core features.
-///
-/// @see ext_vector_relational
-
-
-
-// #include "detail/qualifier.hpp"
-#line 23 "glm/vector_relational.hpp"
-// #include "detail/setup.hpp"
-#line 24 "glm/vector_relational.hpp"
-
-namespace glm
-{
-	/// @addtogroup core_func_vector_relational
-	/// @{
-
-	/// Returns the component-wise comparison result of x < y.
-	///
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T A floating-point or integer scalar type.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/lessThan.xml">GLSL lessThan man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, bool, Q> lessThan(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
-
-	/// Returns the component-wise comparison of result x <= y.
-	///
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T A floating-point or integer scalar type.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/lessThanEqual.xml">GLSL lessThanEqual man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, bool, Q> lessThanEqual(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
-
-	/// Returns the component-wise comparison of result x > y.
-	///
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T A floating-point or integer scalar type.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/greaterThan.xml">GLSL greaterThan man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, bool, Q> greaterThan(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
-
-	/// Returns the component-wise comparison of result x >= y.
-	///
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T A floating-point or integer scalar type.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/greaterThanEqual.xml">GLSL greaterThanEqual man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, bool, Q> greaterThanEqual(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
-
-	/// Returns the component-wise comparison of result x == y.
-	///
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T A floating-point, integer or bool scalar type.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/equal.xml">GLSL equal man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, bool, Q> equal(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
-
-	/// Returns the component-wise comparison of result x != y.
-	///
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	/// @tparam T A floating-point, integer or bool scalar type.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/notEqual.xml">GLSL notEqual man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, bool, Q> notEqual(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
-
-	/// Returns true if any component of x is true.
-	///
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/any.xml">GLSL any man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
-	template<length_t L, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR bool any(vec<L, bool, Q> const& v);
-
-	/// Returns true if all components of x are true.
-	///
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/all.xml">GLSL all man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
-	template<length_t L, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR bool all(vec<L, bool, Q> const& v);
-
-	/// Returns the component-wise logical complement of x.
-	/// /!\ Because of language incompatibilities between C++ and GLSL, GLM defines the function not but not_ instead.
-	///
-	/// @tparam L An integer between 1 and 4 included that qualify the dimension of the vector.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/not.xml">GLSL not man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.7 Vector Relational Functions</a>
-	template<length_t L, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, bool, Q> not_(vec<L, bool, Q> const& v);
-
-	/// @}
-}//namespace glm
-
-// #include "detail/func_vector_relational.inl"
-#line 1 "glm/detail/func_vector_relational.inl"
-namespace glm
-{
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, bool, Q> lessThan(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
-	{
-		vec<L, bool, Q> Result(true);
-		for(length_t i = 0; i < L; ++i)
-			Result[i] = x[i] < y[i];
-		return Result;
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, bool, Q> lessThanEqual(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
-	{
-		vec<L, bool, Q> Result(true);
-		for(length_t i = 0; i < L; ++i)
-			Result[i] = x[i] <= y[i];
-		return Result;
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, bool, Q> greaterThan(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
-	{
-		vec<L, bool, Q> Result(true);
-		for(length_t i = 0; i < L; ++i)
-			Result[i] = x[i] > y[i];
-		return Result;
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, bool, Q> greaterThanEqual(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
-	{
-		vec<L, bool, Q> Result(true);
-		for(length_t i = 0; i < L; ++i)
-			Result[i] = x[i] >= y[i];
-		return Result;
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, bool, Q> equal(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
-	{
-		vec<L, bool, Q> Result(true);
-		for(length_t i = 0; i < L; ++i)
-			Result[i] = x[i] == y[i];
-		return Result;
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, bool, Q> notEqual(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
-	{
-		vec<L, bool, Q> Result(true);
-		for(length_t i = 0; i < L; ++i)
-			Result[i] = x[i] != y[i];
-		return Result;
-	}
-
-	template<length_t L, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR bool any(vec<L, bool, Q> const& v)
-	{
-		bool Result = false;
-		for(length_t i = 0; i < L; ++i)
-			Result = Result || v[i];
-		return Result;
-	}
-
-	template<length_t L, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR bool all(vec<L, bool, Q> const& v)
-	{
-		bool Result = true;
-		for(length_t i = 0; i < L; ++i)
-			Result = Result && v[i];
-		return Result;
-	}
-
-	template<length_t L, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, bool, Q> not_(vec<L, bool, Q> const& v)
-	{
-		vec<L, bool, Q> Result(true);
-		for(length_t i = 0; i < L; ++i)
-			Result[i] = !v[i];
-		return Result;
-	}
-}//namespace glm
-
-#if GLM_CONFIG_SIMD == GLM_ENABLE
-// #	include "func_vector_relational_simd.inl"
-#line 1 "glm/detail/func_vector_relational_simd.inl"
-namespace glm{
-namespace detail
-{
-
-}//namespace detail
-}//namespace glm
-#line 87 "glm/detail/func_vector_relational.inl"
-#endif
-#line 122 "glm/vector_relational.hpp"
-#line 5 "glm/detail/func_exponential.inl"
-// #include "_vectorize.hpp"
-#line 1 "glm/detail/_vectorize.hpp"
-
-
-namespace glm{
-namespace detail
-{
-	template<template<length_t L, typename T, qualifier Q> class vec, length_t L, typename R, typename T, qualifier Q>
-	struct functor1{};
-
-	template<template<length_t L, typename T, qualifier Q> class vec, typename R, typename T, qualifier Q>
-	struct functor1<vec, 1, R, T, Q>
-	{
-		GLM_FUNC_QUALIFIER GLM_CONSTEXPR static vec<1, R, Q> call(R (*Func) (T x), vec<1, T, Q> const& v)
-		{
-			return vec<1, R, Q>(Func(v.x));
-		}
-	};
-
-	template<template<length_t L, typename T, qualifier Q> class vec, typename R, typename T, qualifier Q>
-	struct functor1<vec, 2, R, T, Q>
-	{
-		GLM_FUNC_QUALIFIER GLM_CONSTEXPR static vec<2, R, Q> call(R (*Func) (T x), vec<2, T, Q> const& v)
-		{
-			return vec<2, R, Q>(Func(v.x), Func(v.y));
-		}
-	};
-
-	template<template<length_t L, typename T, qualifier Q> class vec, typename R, typename T, qualifier Q>
-	struct functor1<vec, 3, R, T, Q>
-	{
-		GLM_FUNC_QUALIFIER GLM_CONSTEXPR static vec<3, R, Q> call(R (*Func) (T x), vec<3, T, Q> const& v)
-		{
-			return vec<3, R, Q>(Func(v.x), Func(v.y), Func(v.z));
-		}
-	};
-
-	template<template<length_t L, typename T, qualifier Q> class vec, typename R, typename T, qualifier Q>
-	struct functor1<vec, 4, R, T, Q>
-	{
-		GLM_FUNC_QUALIFIER GLM_CONSTEXPR static vec<4, R, Q> call(R (*Func) (T x), vec<4, T, Q> const& v)
-		{
-			return vec<4, R, Q>(Func(v.x), Func(v.y), Func(v.z), Func(v.w));
-		}
-	};
-
-	template<template<length_t L, typename T, qualifier Q> class vec, length_t L, typename T, qualifier Q>
-	struct functor2{};
-
-	template<template<length_t L, typename T, qualifier Q> class vec, typename T, qualifier Q>
-	struct functor2<vec, 1, T, Q>
-	{
-		GLM_FUNC_QUALIFIER static vec<1, T, Q> call(T (*Func) (T x, T y), vec<1, T, Q> const& a, vec<1, T, Q> const& b)
-		{
-			return vec<1, T, Q>(Func(a.x, b.x));
-		}
-	};
-
-	template<template<length_t L, typename T, qualifier Q> class vec, typename T, qualifier Q>
-	struct functor2<vec, 2, T, Q>
-	{
-		GLM_FUNC_QUALIFIER static vec<2, T, Q> call(T (*Func) (T x, T y), vec<2, T, Q> const& a, vec<2, T, Q> const& b)
-		{
-			return vec<2, T, Q>(Func(a.x, b.x), Func(a.y, b.y));
-		}
-	};
-
-	template<template<length_t L, typename T, qualifier Q> class vec, typename T, qualifier Q>
-	struct functor2<vec, 3, T, Q>
-	{
-		GLM_FUNC_QUALIFIER static vec<3, T, Q> call(T (*Func) (T x, T y), vec<3, T, Q> const& a, vec<3, T, Q> const& b)
-		{
-			return vec<3, T, Q>(Func(a.x, b.x), Func(a.y, b.y), Func(a.z, b.z));
-		}
-	};
-
-	template<template<length_t L, typename T, qualifier Q> class vec, typename T, qualifier Q>
-	struct functor2<vec, 4, T, Q>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, T, Q> call(T (*Func) (T x, T y), vec<4, T, Q> const& a, vec<4, T, Q> const& b)
-		{
-			return vec<4, T, Q>(Func(a.x, b.x), Func(a.y, b.y), Func(a.z, b.z), Func(a.w, b.w));
-		}
-	};
-
-	template<template<length_t L, typename T, qualifier Q> class vec, length_t L, typename T, qualifier Q>
-	struct functor2_vec_sca{};
-
-	template<template<length_t L, typename T, qualifier Q> class vec, typename T, qualifier Q>
-	struct functor2_vec_sca<vec, 1, T, Q>
-	{
-		GLM_FUNC_QUALIFIER static vec<1, T, Q> call(T (*Func) (T x, T y), vec<1, T, Q> const& a, T b)
-		{
-			return vec<1, T, Q>(Func(a.x, b));
-		}
-	};
-
-	template<template<length_t L, typename T, qualifier Q> class vec, typename T, qualifier Q>
-	struct functor2_vec_sca<vec, 2, T, Q>
-	{
-		GLM_FUNC_QUALIFIER static vec<2, T, Q> call(T (*Func) (T x, T y), vec<2, T, Q> const& a, T b)
-		{
-			return vec<2, T, Q>(Func(a.x, b), Func(a.y, b));
-		}
-	};
-
-	template<template<length_t L, typename T, qualifier Q> class vec, typename T, qualifier Q>
-	struct functor2_vec_sca<vec, 3, T, Q>
-	{
-		GLM_FUNC_QUALIFIER static vec<3, T, Q> call(T (*Func) (T x, T y), vec<3, T, Q> const& a, T b)
-		{
-			return vec<3, T, Q>(Func(a.x, b), Func(a.y, b), Func(a.z, b));
-		}
-	};
-
-	template<template<length_t L, typename T, qualifier Q> class vec, typename T, qualifier Q>
-	struct functor2_vec_sca<vec, 4, T, Q>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, T, Q> call(T (*Func) (T x, T y), vec<4, T, Q> const& a, T b)
-		{
-			return vec<4, T, Q>(Func(a.x, b), Func(a.y, b), Func(a.z, b), Func(a.w, b));
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q>
-	struct functor2_vec_int {};
-
-	template<typename T, qualifier Q>
-	struct functor2_vec_int<1, T, Q>
-	{
-		GLM_FUNC_QUALIFIER static vec<1, int, Q> call(int (*Func) (T x, int y), vec<1, T, Q> const& a, vec<1, int, Q> const& b)
-		{
-			return vec<1, int, Q>(Func(a.x, b.x));
-		}
-	};
-
-	template<typename T, qualifier Q>
-	struct functor2_vec_int<2, T, Q>
-	{
-		GLM_FUNC_QUALIFIER static vec<2, int, Q> call(int (*Func) (T x, int y), vec<2, T, Q> const& a, vec<2, int, Q> const& b)
-		{
-			return vec<2, int, Q>(Func(a.x, b.x), Func(a.y, b.y));
-		}
-	};
-
-	template<typename T, qualifier Q>
-	struct functor2_vec_int<3, T, Q>
-	{
-		GLM_FUNC_QUALIFIER static vec<3, int, Q> call(int (*Func) (T x, int y), vec<3, T, Q> const& a, vec<3, int, Q> const& b)
-		{
-			return vec<3, int, Q>(Func(a.x, b.x), Func(a.y, b.y), Func(a.z, b.z));
-		}
-	};
-
-	template<typename T, qualifier Q>
-	struct functor2_vec_int<4, T, Q>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, int, Q> call(int (*Func) (T x, int y), vec<4, T, Q> const& a, vec<4, int, Q> const& b)
-		{
-			return vec<4, int, Q>(Func(a.x, b.x), Func(a.y, b.y), Func(a.z, b.z), Func(a.w, b.w));
-		}
-	};
-}//namespace detail
-}//namespace glm
-#line 6 "glm/detail/func_exponential.inl"
-#include <limits>
-#include <cmath>
-#include <cassert>
-
-namespace glm{
-namespace detail
-{
-#	if GLM_HAS_CXX11_STL
-		using std::log2;
-#	else
-		template<typename genType>
-		genType log2(genType Value)
-		{
-			return std::log(Value) * static_cast<genType>(1.4426950408889634073599246810019);
-		}
-#	endif
-
-	template<length_t L, typename T, qualifier Q, bool isFloat, bool Aligned>
-	struct compute_log2
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& v)
-		{
-			GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'log2' only accept floating-point inputs. Include <glm/gtc/integer.hpp> for integer inputs.");
-
-			return detail::functor1<vec, L, T, T, Q>::call(log2, v);
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_sqrt
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
-		{
-			return detail::functor1<vec, L, T, T, Q>::call(std::sqrt, x);
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_inversesqrt
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
-		{
-			return static_cast<T>(1) / sqrt(x);
-		}
-	};
-
-	template<length_t L, bool Aligned>
-	struct compute_inversesqrt<L, float, lowp, Aligned>
-	{
-		GLM_FUNC_QUALIFIER static vec<L, float, lowp> call(vec<L, float, lowp> const& x)
-		{
-			vec<L, float, lowp> tmp(x);
-			vec<L, float, lowp> xhalf(tmp * 0.5f);
-			vec<L, uint, lowp>* p = reinterpret_cast<vec<L, uint, lowp>*>(const_cast<vec<L, float, lowp>*>(&x));
-			vec<L, uint, lowp> i = vec<L, uint, lowp>(0x5f375a86) - (*p >> vec<L, uint, lowp>(1));
-			vec<L, float, lowp>* ptmp = reinterpret_cast<vec<L, float, lowp>*>(&i);
-			tmp = *ptmp;
-			tmp = tmp * (1.5f - xhalf * tmp * tmp);
-			return tmp;
-		}
-	};
-}//namespace detail
-
-	// pow
-	using std::pow;
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> pow(vec<L, T, Q> const& base, vec<L, T, Q> const& exponent)
-	{
-		return detail::functor2<vec, L, T, Q>::call(pow, base, exponent);
-	}
-
-	// exp
-	using std::exp;
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> exp(vec<L, T, Q> const& x)
-	{
-		return detail::functor1<vec, L, T, T, Q>::call(exp, x);
-	}
-
-	// log
-	using std::log;
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> log(vec<L, T, Q> const& x)
-	{
-		return detail::functor1<vec, L, T, T, Q>::call(log, x);
-	}
-
-#   if GLM_HAS_CXX11_STL
-    using std::exp2;
-#   else
-	//exp2, ln2 = 0.69314718055994530941723212145818f
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType exp2(genType x)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'exp2' only accept floating-point inputs");
-
-		return std::exp(static_cast<genType>(0.69314718055994530941723212145818) * x);
-	}
-#   endif
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> exp2(vec<L, T, Q> const& x)
-	{
-		return detail::functor1<vec, L, T, T, Q>::call(exp2, x);
-	}
-
-	// log2, ln2 = 0.69314718055994530941723212145818f
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType log2(genType x)
-	{
-		return log2(vec<1, genType>(x)).x;
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> log2(vec<L, T, Q> const& x)
-	{
-		return detail::compute_log2<L, T, Q, std::numeric_limits<T>::is_iec559, detail::is_aligned<Q>::value>::call(x);
-	}
-
-	// sqrt
-	using std::sqrt;
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> sqrt(vec<L, T, Q> const& x)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'sqrt' only accept floating-point inputs");
-		return detail::compute_sqrt<L, T, Q, detail::is_aligned<Q>::value>::call(x);
-	}
-
-	// inversesqrt
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType inversesqrt(genType x)
-	{
-		return static_cast<genType>(1) / sqrt(x);
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> inversesqrt(vec<L, T, Q> const& x)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'inversesqrt' only accept floating-point inputs");
-		return detail::compute_inversesqrt<L, T, Q, detail::is_aligned<Q>::value>::call(x);
-	}
-}//namespace glm
-
-#if GLM_CONFIG_SIMD == GLM_ENABLE
-// #	include "func_exponential_simd.inl"
-#line 1 "glm/detail/func_exponential_simd.inl"
-/// @ref core
-/// @file glm/detail/func_exponential_simd.inl
-
-// #include "../simd/exponential.h"
-#line 1 "glm/simd/exponential.h"
-/// @ref simd
-/// @file glm/simd/experimental.h
-
-
-
-// #include "platform.h"
-#line 7 "glm/simd/exponential.h"
-
-#if GLM_ARCH & GLM_ARCH_SSE2_BIT
-
-GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec1_sqrt_lowp(glm_f32vec4 x)
-{
-	return _mm_mul_ss(_mm_rsqrt_ss(x), x);
-}
-
-GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_sqrt_lowp(glm_f32vec4 x)
-{
-	return _mm_mul_ps(_mm_rsqrt_ps(x), x);
-}
-
-#endif//GLM_ARCH & GLM_ARCH_SSE2_BIT
-#line 5 "glm/detail/func_exponential_simd.inl"
-
-#if GLM_ARCH & GLM_ARCH_SSE2_BIT
-
-namespace glm{
-namespace detail
-{
-	template<qualifier Q>
-	struct compute_sqrt<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v)
-		{
-			vec<4, float, Q> Result;
-			Result.data = _mm_sqrt_ps(v.data);
-			return Result;
-		}
-	};
-
-#	if GLM_CONFIG_ALIGNED_GENTYPES == GLM_ENABLE
-	template<>
-	struct compute_sqrt<4, float, aligned_lowp, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, aligned_lowp> call(vec<4, float, aligned_lowp> const& v)
-		{
-			vec<4, float, aligned_lowp> Result;
-			Result.data = glm_vec4_sqrt_lowp(v.data);
-			return Result;
-		}
-	};
-#	endif
-}//namespace detail
-}//namespace glm
-
-#endif//GLM_ARCH & GLM_ARCH_SSE2_BIT
-#line 151 "glm/detail/func_exponential.inl"
-#endif
-
-#line 111 "glm/exponential.hpp"
-#line 2 "glm/detail/func_geometric.inl"
-// #include "../common.hpp"
-#line 1 "glm/common.hpp"
-/// @ref core
-/// @file glm/common.hpp
-///
-/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-///
-/// @defgroup core_func_common Common functions
-/// @ingroup core
-///
-/// Provides GLSL common functions
-///
-/// These all operate component-wise. The description is per component.
-///
-/// Include <glm/common.hpp> to use these core features.
-
-
-
-// #include "detail/qualifier.hpp"
-#line 18 "glm/common.hpp"
-// #include "detail/_fixes.hpp"
-#line 1 "glm/detail/_fixes.hpp"
-#include <cmath>
-
-//! Workaround for compatibility with other libraries
-#ifdef max
-#undef max
-#endif
-
-//! Workaround for compatibility with other libraries
-#ifdef min
-#undef min
-#endif
-
-//! Workaround for Android
-#ifdef isnan
-#undef isnan
-#endif
-
-//! Workaround for Android
-#ifdef isinf
-#undef isinf
-#endif
-
-//! Workaround for Chrone Native Client
-#ifdef log2
-#undef log2
-#endif
-
-#line 19 "glm/common.hpp"
-
-namespace glm
-{
-	/// @addtogroup core_func_common
-	/// @{
-
-	/// Returns x if x >= 0; otherwise, it returns -x.
-	///
-	/// @tparam genType floating-point or signed integer; scalar or vector types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/abs.xml">GLSL abs man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType abs(genType x);
-
-	/// Returns x if x >= 0; otherwise, it returns -x.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point or signed integer scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/abs.xml">GLSL abs man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, T, Q> abs(vec<L, T, Q> const& x);
-
-	/// Returns 1.0 if x > 0, 0.0 if x == 0, or -1.0 if x < 0.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/sign.xml">GLSL sign man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> sign(vec<L, T, Q> const& x);
-
-	/// Returns a value equal to the nearest integer that is less then or equal to x.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/floor.xml">GLSL floor man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> floor(vec<L, T, Q> const& x);
-
-	/// Returns a value equal to the nearest integer to x
-	/// whose absolute value is not larger than the absolute value of x.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/trunc.xml">GLSL trunc man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> trunc(vec<L, T, Q> const& x);
-
-	/// Returns a value equal to the nearest integer to x.
-	/// The fraction 0.5 will round in a direction chosen by the
-	/// implementation, presumably the direction that is fastest.
-	/// This includes the possibility that round(x) returns the
-	/// same value as roundEven(x) for all values of x.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/round.xml">GLSL round man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> round(vec<L, T, Q> const& x);
-
-	/// Returns a value equal to the nearest integer to x.
-	/// A fractional part of 0.5 will round toward the nearest even
-	/// integer. (Both 3.5 and 4.5 for x will return 4.0.)
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/roundEven.xml">GLSL roundEven man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	/// @see <a href="http://developer.amd.com/documentation/articles/pages/New-Round-to-Even-Technique.aspx">New round to even technique</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> roundEven(vec<L, T, Q> const& x);
-
-	/// Returns a value equal to the nearest integer
-	/// that is greater than or equal to x.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/ceil.xml">GLSL ceil man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> ceil(vec<L, T, Q> const& x);
-
-	/// Return x - floor(x).
-	///
-	/// @tparam genType Floating-point scalar or vector types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/fract.xml">GLSL fract man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<typename genType>
-	GLM_FUNC_DECL genType fract(genType x);
-
-	/// Return x - floor(x).
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/fract.xml">GLSL fract man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> fract(vec<L, T, Q> const& x);
-
-	template<typename genType>
-	GLM_FUNC_DECL genType mod(genType x, genType y);
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> mod(vec<L, T, Q> const& x, T y);
-
-	/// Modulus. Returns x - y * floor(x / y)
-	/// for each component in x using the floating point value y.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point scalar types, include glm/gtc/integer for integer scalar types support
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/mod.xml">GLSL mod man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> mod(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
-
-	/// Returns the fractional part of x and sets i to the integer
-	/// part (as a whole number floating point value). Both the
-	/// return value and the output parameter will have the same
-	/// sign as x.
-	///
-	/// @tparam genType Floating-point scalar or vector types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/modf.xml">GLSL modf man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<typename genType>
-	GLM_FUNC_DECL genType modf(genType x, genType& i);
-
-	/// Returns y if y < x; otherwise, it returns x.
-	///
-	/// @tparam genType Floating-point or integer; scalar or vector types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/min.xml">GLSL min man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType min(genType x, genType y);
-
-	/// Returns y if y < x; otherwise, it returns x.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point or integer scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/min.xml">GLSL min man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, T, Q> min(vec<L, T, Q> const& x, T y);
-
-	/// Returns y if y < x; otherwise, it returns x.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point or integer scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/min.xml">GLSL min man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, T, Q> min(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
-
-	/// Returns y if x < y; otherwise, it returns x.
-	///
-	/// @tparam genType Floating-point or integer; scalar or vector types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/max.xml">GLSL max man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType max(genType x, genType y);
-
-	/// Returns y if x < y; otherwise, it returns x.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point or integer scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/max.xml">GLSL max man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, T, Q> max(vec<L, T, Q> const& x, T y);
-
-	/// Returns y if x < y; otherwise, it returns x.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point or integer scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/max.xml">GLSL max man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, T, Q> max(vec<L, T, Q> const& x, vec<L, T, Q> const& y);
-
-	/// Returns min(max(x, minVal), maxVal) for each component in x
-	/// using the floating-point values minVal and maxVal.
-	///
-	/// @tparam genType Floating-point or integer; scalar or vector types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/clamp.xml">GLSL clamp man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<typename genType>
-	GLM_FUNC_DECL GLM_CONSTEXPR genType clamp(genType x, genType minVal, genType maxVal);
-
-	/// Returns min(max(x, minVal), maxVal) for each component in x
-	/// using the floating-point values minVal and maxVal.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point or integer scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/clamp.xml">GLSL clamp man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, T, Q> clamp(vec<L, T, Q> const& x, T minVal, T maxVal);
-
-	/// Returns min(max(x, minVal), maxVal) for each component in x
-	/// using the floating-point values minVal and maxVal.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point or integer scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/clamp.xml">GLSL clamp man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL GLM_CONSTEXPR vec<L, T, Q> clamp(vec<L, T, Q> const& x, vec<L, T, Q> const& minVal, vec<L, T, Q> const& maxVal);
-
-	/// If genTypeU is a floating scalar or vector:
-	/// Returns x * (1.0 - a) + y * a, i.e., the linear blend of
-	/// x and y using the floating-point value a.
-	/// The value for a is not restricted to the range [0, 1].
-	///
-	/// If genTypeU is a boolean scalar or vector:
-	/// Selects which vector each returned component comes
-	/// from. For a component of 'a' that is false, the
-	/// corresponding component of 'x' is returned. For a
-	/// component of 'a' that is true, the corresponding
-	/// component of 'y' is returned. Components of 'x' and 'y' that
-	/// are not selected are allowed to be invalid floating point
-	/// values and will have no effect on the results. Thus, this
-	/// provides different functionality than
-	/// genType mix(genType x, genType y, genType(a))
-	/// where a is a Boolean vector.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/mix.xml">GLSL mix man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	///
-	/// @param[in]  x Value to interpolate.
-	/// @param[in]  y Value to interpolate.
-	/// @param[in]  a Interpolant.
-	///
-	/// @tparam	genTypeT Floating point scalar or vector.
-	/// @tparam genTypeU Floating point or boolean scalar or vector. It can't be a vector if it is the length of genTypeT.
-	///
-	/// @code
-	/// #include <glm/glm.hpp>
-	/// ...
-	/// float a;
-	/// bool b;
-	/// glm::dvec3 e;
-	/// glm::dvec3 f;
-	/// glm::vec4 g;
-	/// glm::vec4 h;
-	/// ...
-	/// glm::vec4 r = glm::mix(g, h, a); // Interpolate with a floating-point scalar two vectors.
-	/// glm::vec4 s = glm::mix(g, h, b); // Returns g or h;
-	/// glm::dvec3 t = glm::mix(e, f, a); // Types of the third parameter is not required to match with the first and the second.
-	/// glm::vec4 u = glm::mix(g, h, r); // Interpolations can be perform per component with a vector for the last parameter.
-	/// @endcode
-	template<typename genTypeT, typename genTypeU>
-	GLM_FUNC_DECL genTypeT mix(genTypeT x, genTypeT y, genTypeU a);
-
-	template<length_t L, typename T, typename U, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> mix(vec<L, T, Q> const& x, vec<L, T, Q> const& y, vec<L, U, Q> const& a);
-
-	template<length_t L, typename T, typename U, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> mix(vec<L, T, Q> const& x, vec<L, T, Q> const& y, U a);
-
-	/// Returns 0.0 if x < edge, otherwise it returns 1.0 for each component of a genType.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/step.xml">GLSL step man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<typename genType>
-	GLM_FUNC_DECL genType step(genType edge, genType x);
-
-	/// Returns 0.0 if x < edge, otherwise it returns 1.0.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/step.xml">GLSL step man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> step(T edge, vec<L, T, Q> const& x);
-
-	/// Returns 0.0 if x < edge, otherwise it returns 1.0.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/step.xml">GLSL step man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> step(vec<L, T, Q> const& edge, vec<L, T, Q> const& x);
-
-	/// Returns 0.0 if x <= edge0 and 1.0 if x >= edge1 and
-	/// performs smooth Hermite interpolation between 0 and 1
-	/// when edge0 < x < edge1. This is useful in cases where
-	/// you would want a threshold function with a smooth
-	/// transition. This is equivalent to:
-	/// genType t;
-	/// t = clamp ((x - edge0) / (edge1 - edge0), 0, 1);
-	/// return t * t * (3 - 2 * t);
-	/// Results are undefined if edge0 >= edge1.
-	///
-	/// @tparam genType Floating-point scalar or vector types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/smoothstep.xml">GLSL smoothstep man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<typename genType>
-	GLM_FUNC_DECL genType smoothstep(genType edge0, genType edge1, genType x);
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> smoothstep(T edge0, T edge1, vec<L, T, Q> const& x);
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> smoothstep(vec<L, T, Q> const& edge0, vec<L, T, Q> const& edge1, vec<L, T, Q> const& x);
-
-	/// Returns true if x holds a NaN (not a number)
-	/// representation in the underlying implementation's set of
-	/// floating point representations. Returns false otherwise,
-	/// including for implementations with no NaN
-	/// representations.
-	///
-	/// /!\ When using compiler fast math, this function may fail.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/isnan.xml">GLSL isnan man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, bool, Q> isnan(vec<L, T, Q> const& x);
-
-	/// Returns true if x holds a positive infinity or negative
-	/// infinity representation in the underlying implementation's
-	/// set of floating point representations. Returns false
-	/// otherwise, including for implementations with no infinity
-	/// representations.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam T Floating-point scalar types
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/isinf.xml">GLSL isinf man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, bool, Q> isinf(vec<L, T, Q> const& x);
-
-	/// Returns a signed integer value representing
-	/// the encoding of a floating-point value. The floating-point
-	/// value's bit-level representation is preserved.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/floatBitsToInt.xml">GLSL floatBitsToInt man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	GLM_FUNC_DECL int floatBitsToInt(float const& v);
-
-	/// Returns a signed integer value representing
-	/// the encoding of a floating-point value. The floatingpoint
-	/// value's bit-level representation is preserved.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/floatBitsToInt.xml">GLSL floatBitsToInt man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, qualifier Q>
-	GLM_FUNC_DECL vec<L, int, Q> floatBitsToInt(vec<L, float, Q> const& v);
-
-	/// Returns a unsigned integer value representing
-	/// the encoding of a floating-point value. The floatingpoint
-	/// value's bit-level representation is preserved.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/floatBitsToUint.xml">GLSL floatBitsToUint man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	GLM_FUNC_DECL uint floatBitsToUint(float const& v);
-
-	/// Returns a unsigned integer value representing
-	/// the encoding of a floating-point value. The floatingpoint
-	/// value's bit-level representation is preserved.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/floatBitsToUint.xml">GLSL floatBitsToUint man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, qualifier Q>
-	GLM_FUNC_DECL vec<L, uint, Q> floatBitsToUint(vec<L, float, Q> const& v);
-
-	/// Returns a floating-point value corresponding to a signed
-	/// integer encoding of a floating-point value.
-	/// If an inf or NaN is passed in, it will not signal, and the
-	/// resulting floating point value is unspecified. Otherwise,
-	/// the bit-level representation is preserved.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/intBitsToFloat.xml">GLSL intBitsToFloat man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	GLM_FUNC_DECL float intBitsToFloat(int const& v);
-
-	/// Returns a floating-point value corresponding to a signed
-	/// integer encoding of a floating-point value.
-	/// If an inf or NaN is passed in, it will not signal, and the
-	/// resulting floating point value is unspecified. Otherwise,
-	/// the bit-level representation is preserved.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/intBitsToFloat.xml">GLSL intBitsToFloat man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, qualifier Q>
-	GLM_FUNC_DECL vec<L, float, Q> intBitsToFloat(vec<L, int, Q> const& v);
-
-	/// Returns a floating-point value corresponding to a
-	/// unsigned integer encoding of a floating-point value.
-	/// If an inf or NaN is passed in, it will not signal, and the
-	/// resulting floating point value is unspecified. Otherwise,
-	/// the bit-level representation is preserved.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/uintBitsToFloat.xml">GLSL uintBitsToFloat man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	GLM_FUNC_DECL float uintBitsToFloat(uint const& v);
-
-	/// Returns a floating-point value corresponding to a
-	/// unsigned integer encoding of a floating-point value.
-	/// If an inf or NaN is passed in, it will not signal, and the
-	/// resulting floating point value is unspecified. Otherwise,
-	/// the bit-level representation is preserved.
-	///
-	/// @tparam L Integer between 1 and 4 included that qualify the dimension of the vector
-	/// @tparam Q Value from qualifier enum
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/uintBitsToFloat.xml">GLSL uintBitsToFloat man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<length_t L, qualifier Q>
-	GLM_FUNC_DECL vec<L, float, Q> uintBitsToFloat(vec<L, uint, Q> const& v);
-
-	/// Computes and returns a * b + c.
-	///
-	/// @tparam genType Floating-point scalar or vector types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/fma.xml">GLSL fma man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<typename genType>
-	GLM_FUNC_DECL genType fma(genType const& a, genType const& b, genType const& c);
-
-	/// Splits x into a floating-point significand in the range
-	/// [0.5, 1.0) and an integral exponent of two, such that:
-	/// x = significand * exp(2, exponent)
-	///
-	/// The significand is returned by the function and the
-	/// exponent is returned in the parameter exp. For a
-	/// floating-point value of zero, the significant and exponent
-	/// are both zero. For a floating-point value that is an
-	/// infinity or is not a number, the results are undefined.
-	///
-	/// @tparam genType Floating-point scalar or vector types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/frexp.xml">GLSL frexp man page</a>
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<typename genType>
-	GLM_FUNC_DECL genType frexp(genType x, int& exp);
-	
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> frexp(vec<L, T, Q> const& v, vec<L, int, Q>& exp);
-
-	/// Builds a floating-point number from x and the
-	/// corresponding integral exponent of two in exp, returning:
-	/// significand * exp(2, exponent)
-	///
-	/// If this product is too large to be represented in the
-	/// floating-point type, the result is undefined.
-	///
-	/// @tparam genType Floating-point scalar or vector types.
-	///
-	/// @see <a href="http://www.opengl.org/sdk/docs/manglsl/xhtml/ldexp.xml">GLSL ldexp man page</a>;
-	/// @see <a href="http://www.opengl.org/registry/doc/GLSLangSpec.4.20.8.pdf">GLSL 4.20.8 specification, section 8.3 Common Functions</a>
-	template<typename genType>
-	GLM_FUNC_DECL genType ldexp(genType const& x, int const& exp);
-	
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_DECL vec<L, T, Q> ldexp(vec<L, T, Q> const& v, vec<L, int, Q> const& exp);
-
-	/// @}
-}//namespace glm
-
-// #include "detail/func_common.inl"
-#line 1 "glm/detail/func_common.inl"
-/// @ref core
-/// @file glm/detail/func_common.inl
-
-// #include "../vector_relational.hpp"
-#line 5 "glm/detail/func_common.inl"
-// #include "compute_common.hpp"
-#line 1 "glm/detail/compute_common.hpp"
-
-
-// #include "setup.hpp"
-#line 4 "glm/detail/compute_common.hpp"
-#include <limits>
-
-namespace glm{
-namespace detail
-{
-	template<typename genFIType, bool /*signed*/>
-	struct compute_abs
-	{};
-
-	template<typename genFIType>
-	struct compute_abs<genFIType, true>
-	{
-		GLM_FUNC_QUALIFIER GLM_CONSTEXPR static genFIType call(genFIType x)
-		{
-			GLM_STATIC_ASSERT(
-				std::numeric_limits<genFIType>::is_iec559 || std::numeric_limits<genFIType>::is_signed,
-				"'abs' only accept floating-point and integer scalar or vector inputs");
-
-			return x >= genFIType(0) ? x : -x;
-			// TODO, perf comp with: *(((int *) &x) + 1) &= 0x7fffffff;
-		}
-	};
-
-#if GLM_COMPILER & GLM_COMPILER_CUDA
-	template<>
-	struct compute_abs<float, true>
-	{
-		GLM_FUNC_QUALIFIER GLM_CONSTEXPR static float call(float x)
-		{
-			return fabsf(x);
-		}
-	};
-#endif
-
-	template<typename genFIType>
-	struct compute_abs<genFIType, false>
-	{
-		GLM_FUNC_QUALIFIER GLM_CONSTEXPR static genFIType call(genFIType x)
-		{
-			GLM_STATIC_ASSERT(
-				(!std::numeric_limits<genFIType>::is_signed && std::numeric_limits<genFIType>::is_integer),
-				"'abs' only accept floating-point and integer scalar or vector inputs");
-			return x;
-		}
-	};
-}//namespace detail
-}//namespace glm
-#line 6 "glm/detail/func_common.inl"
-// #include "type_vec1.hpp"
-#line 7 "glm/detail/func_common.inl"
-// #include "type_vec2.hpp"
-#line 8 "glm/detail/func_common.inl"
-// #include "type_vec3.hpp"
-#line 9 "glm/detail/func_common.inl"
-// #include "type_vec4.hpp"
-#line 10 "glm/detail/func_common.inl"
-// #include "_vectorize.hpp"
-#line 11 "glm/detail/func_common.inl"
-#include <limits>
-
-namespace glm
-{
-	// min
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType min(genType x, genType y)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559 || std::numeric_limits<genType>::is_integer, "'min' only accept floating-point or integer inputs");
-		return (y < x) ? y : x;
-	}
-
-	// max
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType max(genType x, genType y)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559 || std::numeric_limits<genType>::is_integer, "'max' only accept floating-point or integer inputs");
-
-		return (x < y) ? y : x;
-	}
-
-	// abs
-	template<>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR int abs(int x)
-	{
-		int const y = x >> (sizeof(int) * 8 - 1);
-		return (x ^ y) - y;
-	}
-
-	// round
-#	if GLM_HAS_CXX11_STL
-		using ::std::round;
-#	else
-		template<typename genType>
-		GLM_FUNC_QUALIFIER genType round(genType x)
-		{
-			GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'round' only accept floating-point inputs");
-
-			return x < static_cast<genType>(0) ? static_cast<genType>(int(x - static_cast<genType>(0.5))) : static_cast<genType>(int(x + static_cast<genType>(0.5)));
-		}
-#	endif
-
-	// trunc
-#	if GLM_HAS_CXX11_STL
-		using ::std::trunc;
-#	else
-		template<typename genType>
-		GLM_FUNC_QUALIFIER genType trunc(genType x)
-		{
-			GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'trunc' only accept floating-point inputs");
-
-			return x < static_cast<genType>(0) ? -std::floor(-x) : std::floor(x);
-		}
-#	endif
-
-}//namespace glm
-
-namespace glm{
-namespace detail
-{
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_abs_vector
-	{
-		GLM_FUNC_QUALIFIER GLM_CONSTEXPR static vec<L, T, Q> call(vec<L, T, Q> const& x)
-		{
-			return detail::functor1<vec, L, T, T, Q>::call(abs, x);
-		}
-	};
-
-	template<length_t L, typename T, typename U, qualifier Q, bool Aligned>
-	struct compute_mix_vector
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x, vec<L, T, Q> const& y, vec<L, U, Q> const& a)
-		{
-			GLM_STATIC_ASSERT(std::numeric_limits<U>::is_iec559 || GLM_CONFIG_UNRESTRICTED_GENTYPE, "'mix' only accept floating-point inputs for the interpolator a");
-
-			return vec<L, T, Q>(vec<L, U, Q>(x) * (static_cast<U>(1) - a) + vec<L, U, Q>(y) * a);
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_mix_vector<L, T, bool, Q, Aligned>
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x, vec<L, T, Q> const& y, vec<L, bool, Q> const& a)
-		{
-			vec<L, T, Q> Result;
-			for(length_t i = 0; i < x.length(); ++i)
-				Result[i] = a[i] ? y[i] : x[i];
-			return Result;
-		}
-	};
-
-	template<length_t L, typename T, typename U, qualifier Q, bool Aligned>
-	struct compute_mix_scalar
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x, vec<L, T, Q> const& y, U const& a)
-		{
-			GLM_STATIC_ASSERT(std::numeric_limits<U>::is_iec559 || GLM_CONFIG_UNRESTRICTED_GENTYPE, "'mix' only accept floating-point inputs for the interpolator a");
-
-			return vec<L, T, Q>(vec<L, U, Q>(x) * (static_cast<U>(1) - a) + vec<L, U, Q>(y) * a);
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_mix_scalar<L, T, bool, Q, Aligned>
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x, vec<L, T, Q> const& y, bool const& a)
-		{
-			return a ? y : x;
-		}
-	};
-
-	template<typename T, typename U>
-	struct compute_mix
-	{
-		GLM_FUNC_QUALIFIER static T call(T const& x, T const& y, U const& a)
-		{
-			GLM_STATIC_ASSERT(std::numeric_limits<U>::is_iec559 || GLM_CONFIG_UNRESTRICTED_GENTYPE, "'mix' only accept floating-point inputs for the interpolator a");
-
-			return static_cast<T>(static_cast<U>(x) * (static_cast<U>(1) - a) + static_cast<U>(y) * a);
-		}
-	};
-
-	template<typename T>
-	struct compute_mix<T, bool>
-	{
-		GLM_FUNC_QUALIFIER static T call(T const& x, T const& y, bool const& a)
-		{
-			return a ? y : x;
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool isFloat, bool Aligned>
-	struct compute_sign
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
-		{
-			return vec<L, T, Q>(glm::lessThan(vec<L, T, Q>(0), x)) - vec<L, T, Q>(glm::lessThan(x, vec<L, T, Q>(0)));
-		}
-	};
-
-#	if GLM_ARCH == GLM_ARCH_X86
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_sign<L, T, Q, false, Aligned>
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
-		{
-			T const Shift(static_cast<T>(sizeof(T) * 8 - 1));
-			vec<L, T, Q> const y(vec<L, typename detail::make_unsigned<T>::type, Q>(-x) >> typename detail::make_unsigned<T>::type(Shift));
-
-			return (x >> Shift) | y;
-		}
-	};
-#	endif
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_floor
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
-		{
-			return detail::functor1<vec, L, T, T, Q>::call(std::floor, x);
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_ceil
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
-		{
-			return detail::functor1<vec, L, T, T, Q>::call(std::ceil, x);
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_fract
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
-		{
-			return x - floor(x);
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_trunc
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
-		{
-			return detail::functor1<vec, L, T, T, Q>::call(trunc, x);
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_round
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x)
-		{
-			return detail::functor1<vec, L, T, T, Q>::call(round, x);
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_mod
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& a, vec<L, T, Q> const& b)
-		{
-			GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'mod' only accept floating-point inputs. Include <glm/gtc/integer.hpp> for integer inputs.");
-			return a - b * floor(a / b);
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_min_vector
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
-		{
-			return detail::functor2<vec, L, T, Q>::call(min, x, y);
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_max_vector
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
-		{
-			return detail::functor2<vec, L, T, Q>::call(max, x, y);
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_clamp_vector
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& x, vec<L, T, Q> const& minVal, vec<L, T, Q> const& maxVal)
-		{
-			return min(max(x, minVal), maxVal);
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_step_vector
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& edge, vec<L, T, Q> const& x)
-		{
-			return mix(vec<L, T, Q>(1), vec<L, T, Q>(0), glm::lessThan(x, edge));
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_smoothstep_vector
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& edge0, vec<L, T, Q> const& edge1, vec<L, T, Q> const& x)
-		{
-			GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559 || GLM_CONFIG_UNRESTRICTED_GENTYPE, "'smoothstep' only accept floating-point inputs");
-			vec<L, T, Q> const tmp(clamp((x - edge0) / (edge1 - edge0), static_cast<T>(0), static_cast<T>(1)));
-			return tmp * tmp * (static_cast<T>(3) - static_cast<T>(2) * tmp);
-		}
-	};
-}//namespace detail
-
-	template<typename genFIType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genFIType abs(genFIType x)
-	{
-		return detail::compute_abs<genFIType, std::numeric_limits<genFIType>::is_signed>::call(x);
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, T, Q> abs(vec<L, T, Q> const& x)
-	{
-		return detail::compute_abs_vector<L, T, Q, detail::is_aligned<Q>::value>::call(x);
-	}
-
-	// sign
-	// fast and works for any type
-	template<typename genFIType>
-	GLM_FUNC_QUALIFIER genFIType sign(genFIType x)
-	{
-		GLM_STATIC_ASSERT(
-			std::numeric_limits<genFIType>::is_iec559 || (std::numeric_limits<genFIType>::is_signed && std::numeric_limits<genFIType>::is_integer),
-			"'sign' only accept signed inputs");
-
-		return detail::compute_sign<1, genFIType, defaultp,
-                                    std::numeric_limits<genFIType>::is_iec559, detail::is_aligned<highp>::value>::call(vec<1, genFIType>(x)).x;
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> sign(vec<L, T, Q> const& x)
-	{
-		GLM_STATIC_ASSERT(
-			std::numeric_limits<T>::is_iec559 || (std::numeric_limits<T>::is_signed && std::numeric_limits<T>::is_integer),
-			"'sign' only accept signed inputs");
-
-		return detail::compute_sign<L, T, Q, std::numeric_limits<T>::is_iec559, detail::is_aligned<Q>::value>::call(x);
-	}
-
-	// floor
-	using ::std::floor;
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> floor(vec<L, T, Q> const& x)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'floor' only accept floating-point inputs.");
-		return detail::compute_floor<L, T, Q, detail::is_aligned<Q>::value>::call(x);
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> trunc(vec<L, T, Q> const& x)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'trunc' only accept floating-point inputs");
-		return detail::compute_trunc<L, T, Q, detail::is_aligned<Q>::value>::call(x);
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> round(vec<L, T, Q> const& x)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'round' only accept floating-point inputs");
-		return detail::compute_round<L, T, Q, detail::is_aligned<Q>::value>::call(x);
-	}
-
-/*
-	// roundEven
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType roundEven(genType const& x)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'roundEven' only accept floating-point inputs");
-
-		return genType(int(x + genType(int(x) % 2)));
-	}
-*/
-
-	// roundEven
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType roundEven(genType x)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'roundEven' only accept floating-point inputs");
-
-		int Integer = static_cast<int>(x);
-		genType IntegerPart = static_cast<genType>(Integer);
-		genType FractionalPart = fract(x);
-
-		if(FractionalPart > static_cast<genType>(0.5) || FractionalPart < static_cast<genType>(0.5))
-		{
-			return round(x);
-		}
-		else if((Integer % 2) == 0)
-		{
-			return IntegerPart;
-		}
-		else if(x <= static_cast<genType>(0)) // Work around...
-		{
-			return IntegerPart - static_cast<genType>(1);
-		}
-		else
-		{
-			return IntegerPart + static_cast<genType>(1);
-		}
-		//else // Bug on MinGW 4.5.2
-		//{
-		//	return mix(IntegerPart + genType(-1), IntegerPart + genType(1), x <= genType(0));
-		//}
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> roundEven(vec<L, T, Q> const& x)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'roundEven' only accept floating-point inputs");
-		return detail::functor1<vec, L, T, T, Q>::call(roundEven, x);
-	}
-
-	// ceil
-	using ::std::ceil;
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> ceil(vec<L, T, Q> const& x)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'ceil' only accept floating-point inputs");
-		return detail::compute_ceil<L, T, Q, detail::is_aligned<Q>::value>::call(x);
-	}
-
-	// fract
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType fract(genType x)
-	{
-		return fract(vec<1, genType>(x)).x;
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> fract(vec<L, T, Q> const& x)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'fract' only accept floating-point inputs");
-		return detail::compute_fract<L, T, Q, detail::is_aligned<Q>::value>::call(x);
-	}
-
-	// mod
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType mod(genType x, genType y)
-	{
-#		if GLM_COMPILER & GLM_COMPILER_CUDA
-			// Another Cuda compiler bug https://github.com/g-truc/glm/issues/530
-			vec<1, genType, defaultp> Result(mod(vec<1, genType, defaultp>(x), y));
-			return Result.x;
-#		else
-			return mod(vec<1, genType, defaultp>(x), y).x;
-#		endif
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> mod(vec<L, T, Q> const& x, T y)
-	{
-		return detail::compute_mod<L, T, Q, detail::is_aligned<Q>::value>::call(x, vec<L, T, Q>(y));
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> mod(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
-	{
-		return detail::compute_mod<L, T, Q, detail::is_aligned<Q>::value>::call(x, y);
-	}
-
-	// modf
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType modf(genType x, genType & i)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'modf' only accept floating-point inputs");
-		return std::modf(x, &i);
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<1, T, Q> modf(vec<1, T, Q> const& x, vec<1, T, Q> & i)
-	{
-		return vec<1, T, Q>(
-			modf(x.x, i.x));
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<2, T, Q> modf(vec<2, T, Q> const& x, vec<2, T, Q> & i)
-	{
-		return vec<2, T, Q>(
-			modf(x.x, i.x),
-			modf(x.y, i.y));
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<3, T, Q> modf(vec<3, T, Q> const& x, vec<3, T, Q> & i)
-	{
-		return vec<3, T, Q>(
-			modf(x.x, i.x),
-			modf(x.y, i.y),
-			modf(x.z, i.z));
-	}
-
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<4, T, Q> modf(vec<4, T, Q> const& x, vec<4, T, Q> & i)
-	{
-		return vec<4, T, Q>(
-			modf(x.x, i.x),
-			modf(x.y, i.y),
-			modf(x.z, i.z),
-			modf(x.w, i.w));
-	}
-
-	//// Only valid if (INT_MIN <= x-y <= INT_MAX)
-	//// min(x,y)
-	//r = y + ((x - y) & ((x - y) >> (sizeof(int) *
-	//CHAR_BIT - 1)));
-	//// max(x,y)
-	//r = x - ((x - y) & ((x - y) >> (sizeof(int) *
-	//CHAR_BIT - 1)));
-
-	// min
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, T, Q> min(vec<L, T, Q> const& a, T b)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559 || std::numeric_limits<T>::is_integer, "'min' only accept floating-point or integer inputs");
-		return detail::compute_min_vector<L, T, Q, detail::is_aligned<Q>::value>::call(a, vec<L, T, Q>(b));
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, T, Q> min(vec<L, T, Q> const& a, vec<L, T, Q> const& b)
-	{
-		return detail::compute_min_vector<L, T, Q, detail::is_aligned<Q>::value>::call(a, b);
-	}
-
-	// max
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, T, Q> max(vec<L, T, Q> const& a, T b)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559 || std::numeric_limits<T>::is_integer, "'max' only accept floating-point or integer inputs");
-		return detail::compute_max_vector<L, T, Q, detail::is_aligned<Q>::value>::call(a, vec<L, T, Q>(b));
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, T, Q> max(vec<L, T, Q> const& a, vec<L, T, Q> const& b)
-	{
-		return detail::compute_max_vector<L, T, Q, detail::is_aligned<Q>::value>::call(a, b);
-	}
-
-	// clamp
-	template<typename genType>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR genType clamp(genType x, genType minVal, genType maxVal)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559 || std::numeric_limits<genType>::is_integer, "'clamp' only accept floating-point or integer inputs");
-		return min(max(x, minVal), maxVal);
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, T, Q> clamp(vec<L, T, Q> const& x, T minVal, T maxVal)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559 || std::numeric_limits<T>::is_integer, "'clamp' only accept floating-point or integer inputs");
-		return detail::compute_clamp_vector<L, T, Q, detail::is_aligned<Q>::value>::call(x, vec<L, T, Q>(minVal), vec<L, T, Q>(maxVal));
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER GLM_CONSTEXPR vec<L, T, Q> clamp(vec<L, T, Q> const& x, vec<L, T, Q> const& minVal, vec<L, T, Q> const& maxVal)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559 || std::numeric_limits<T>::is_integer, "'clamp' only accept floating-point or integer inputs");
-		return detail::compute_clamp_vector<L, T, Q, detail::is_aligned<Q>::value>::call(x, minVal, maxVal);
-	}
-
-	template<typename genTypeT, typename genTypeU>
-	GLM_FUNC_QUALIFIER genTypeT mix(genTypeT x, genTypeT y, genTypeU a)
-	{
-		return detail::compute_mix<genTypeT, genTypeU>::call(x, y, a);
-	}
-
-	template<length_t L, typename T, typename U, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> mix(vec<L, T, Q> const& x, vec<L, T, Q> const& y, U a)
-	{
-		return detail::compute_mix_scalar<L, T, U, Q, detail::is_aligned<Q>::value>::call(x, y, a);
-	}
-
-	template<length_t L, typename T, typename U, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> mix(vec<L, T, Q> const& x, vec<L, T, Q> const& y, vec<L, U, Q> const& a)
-	{
-		return detail::compute_mix_vector<L, T, U, Q, detail::is_aligned<Q>::value>::call(x, y, a);
-	}
-
-	// step
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType step(genType edge, genType x)
-	{
-		return mix(static_cast<genType>(1), static_cast<genType>(0), x < edge);
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> step(T edge, vec<L, T, Q> const& x)
-	{
-		return detail::compute_step_vector<L, T, Q, detail::is_aligned<Q>::value>::call(vec<L, T, Q>(edge), x);
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> step(vec<L, T, Q> const& edge, vec<L, T, Q> const& x)
-	{
-		return detail::compute_step_vector<L, T, Q, detail::is_aligned<Q>::value>::call(edge, x);
-	}
-
-	// smoothstep
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType smoothstep(genType edge0, genType edge1, genType x)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559 || GLM_CONFIG_UNRESTRICTED_GENTYPE, "'smoothstep' only accept floating-point inputs");
-
-		genType const tmp(clamp((x - edge0) / (edge1 - edge0), genType(0), genType(1)));
-		return tmp * tmp * (genType(3) - genType(2) * tmp);
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> smoothstep(T edge0, T edge1, vec<L, T, Q> const& x)
-	{
-		return detail::compute_smoothstep_vector<L, T, Q, detail::is_aligned<Q>::value>::call(vec<L, T, Q>(edge0), vec<L, T, Q>(edge1), x);
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> smoothstep(vec<L, T, Q> const& edge0, vec<L, T, Q> const& edge1, vec<L, T, Q> const& x)
-	{
-		return detail::compute_smoothstep_vector<L, T, Q, detail::is_aligned<Q>::value>::call(edge0, edge1, x);
-	}
-
-#	if GLM_HAS_CXX11_STL
-		using std::isnan;
-#	else
-		template<typename genType>
-		GLM_FUNC_QUALIFIER bool isnan(genType x)
-		{
-			GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'isnan' only accept floating-point inputs");
-
-#			if GLM_HAS_CXX11_STL
-				return std::isnan(x);
-#			elif GLM_COMPILER & GLM_COMPILER_VC
-				return _isnan(x) != 0;
-#			elif GLM_COMPILER & GLM_COMPILER_INTEL
-#				if GLM_PLATFORM & GLM_PLATFORM_WINDOWS
-					return _isnan(x) != 0;
-#				else
-					return ::isnan(x) != 0;
-#				endif
-#			elif (GLM_COMPILER & (GLM_COMPILER_GCC | GLM_COMPILER_CLANG)) && (GLM_PLATFORM & GLM_PLATFORM_ANDROID) && __cplusplus < 201103L
-				return _isnan(x) != 0;
-#			elif GLM_COMPILER & GLM_COMPILER_CUDA
-				return ::isnan(x) != 0;
-#			else
-				return std::isnan(x);
-#			endif
-		}
-#	endif
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, bool, Q> isnan(vec<L, T, Q> const& v)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'isnan' only accept floating-point inputs");
-
-		vec<L, bool, Q> Result;
-		for (length_t l = 0; l < v.length(); ++l)
-			Result[l] = glm::isnan(v[l]);
-		return Result;
-	}
-
-#	if GLM_HAS_CXX11_STL
-		using std::isinf;
-#	else
-		template<typename genType>
-		GLM_FUNC_QUALIFIER bool isinf(genType x)
-		{
-			GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'isinf' only accept floating-point inputs");
-
-#			if GLM_HAS_CXX11_STL
-				return std::isinf(x);
-#			elif GLM_COMPILER & (GLM_COMPILER_INTEL | GLM_COMPILER_VC)
-#				if(GLM_PLATFORM & GLM_PLATFORM_WINDOWS)
-					return _fpclass(x) == _FPCLASS_NINF || _fpclass(x) == _FPCLASS_PINF;
-#				else
-					return ::isinf(x);
-#				endif
-#			elif GLM_COMPILER & (GLM_COMPILER_GCC | GLM_COMPILER_CLANG)
-#				if(GLM_PLATFORM & GLM_PLATFORM_ANDROID && __cplusplus < 201103L)
-					return _isinf(x) != 0;
-#				else
-					return std::isinf(x);
-#				endif
-#			elif GLM_COMPILER & GLM_COMPILER_CUDA
-				// http://developer.download.nvidia.com/compute/cuda/4_2/rel/toolkit/docs/online/group__CUDA__MATH__DOUBLE_g13431dd2b40b51f9139cbb7f50c18fab.html#g13431dd2b40b51f9139cbb7f50c18fab
-				return ::isinf(double(x)) != 0;
-#			else
-				return std::isinf(x);
-#			endif
-	}
-#	endif
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, bool, Q> isinf(vec<L, T, Q> const& v)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'isinf' only accept floating-point inputs");
-
-		vec<L, bool, Q> Result;
-		for (length_t l = 0; l < v.length(); ++l)
-			Result[l] = glm::isinf(v[l]);
-		return Result;
-	}
-
-	GLM_FUNC_QUALIFIER int floatBitsToInt(float const& v)
-	{
-		union
-		{
-			float in;
-			int out;
-		} u;
-
-		u.in = v;
-
-		return u.out;
-	}
-
-	template<length_t L, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, int, Q> floatBitsToInt(vec<L, float, Q> const& v)
-	{
-		return reinterpret_cast<vec<L, int, Q>&>(const_cast<vec<L, float, Q>&>(v));
-	}
-
-	GLM_FUNC_QUALIFIER uint floatBitsToUint(float const& v)
-	{
-		union
-		{
-			float in;
-			uint out;
-		} u;
-
-		u.in = v;
-
-		return u.out;
-	}
-
-	template<length_t L, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, uint, Q> floatBitsToUint(vec<L, float, Q> const& v)
-	{
-		return reinterpret_cast<vec<L, uint, Q>&>(const_cast<vec<L, float, Q>&>(v));
-	}
-
-	GLM_FUNC_QUALIFIER float intBitsToFloat(int const& v)
-	{
-		union
-		{
-			int in;
-			float out;
-		} u;
-
-		u.in = v;
-
-		return u.out;
-	}
-
-	template<length_t L, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, float, Q> intBitsToFloat(vec<L, int, Q> const& v)
-	{
-		return reinterpret_cast<vec<L, float, Q>&>(const_cast<vec<L, int, Q>&>(v));
-	}
-
-	GLM_FUNC_QUALIFIER float uintBitsToFloat(uint const& v)
-	{
-		union
-		{
-			uint in;
-			float out;
-		} u;
-
-		u.in = v;
-
-		return u.out;
-	}
-
-	template<length_t L, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, float, Q> uintBitsToFloat(vec<L, uint, Q> const& v)
-	{
-		return reinterpret_cast<vec<L, float, Q>&>(const_cast<vec<L, uint, Q>&>(v));
-	}
-
-#	if GLM_HAS_CXX11_STL
-		using std::fma;
-#	else
-		template<typename genType>
-		GLM_FUNC_QUALIFIER genType fma(genType const& a, genType const& b, genType const& c)
-		{
-			return a * b + c;
-		}
-#	endif
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType frexp(genType x, int& exp)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'frexp' only accept floating-point inputs");
-
-		return std::frexp(x, &exp);
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> frexp(vec<L, T, Q> const& v, vec<L, int, Q>& exp)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'frexp' only accept floating-point inputs");
-
-		vec<L, T, Q> Result;
-		for (length_t l = 0; l < v.length(); ++l)
-			Result[l] = std::frexp(v[l], &exp[l]);
-		return Result;
-	}
-
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType ldexp(genType const& x, int const& exp)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'ldexp' only accept floating-point inputs");
-
-		return std::ldexp(x, exp);
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> ldexp(vec<L, T, Q> const& v, vec<L, int, Q> const& exp)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'ldexp' only accept floating-point inputs");
-
-		vec<L, T, Q> Result;
-		for (length_t l = 0; l < v.length(); ++l)
-			Result[l] = std::ldexp(v[l], exp[l]);
-		return Result;
-	}
-}//namespace glm
-
-#if GLM_CONFIG_SIMD == GLM_ENABLE
-// #	include "func_common_simd.inl"
-#line 1 "glm/detail/func_common_simd.inl"
-/// @ref core
-/// @file glm/detail/func_common_simd.inl
-
-#if GLM_ARCH & GLM_ARCH_SSE2_BIT
-
-// #include "../simd/common.h"
-#line 1 "glm/simd/common.h"
-/// @ref simd
-/// @file glm/simd/common.h
-
-
-
-// #include "platform.h"
-#line 7 "glm/simd/common.h"
-
-#if GLM_ARCH & GLM_ARCH_SSE2_BIT
-
-GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_add(glm_f32vec4 a, glm_f32vec4 b)
-{
-	return _mm_add_ps(a, b);
-}
-
-GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec1_add(glm_f32vec4 a, glm_f32vec4 b)
-{
-	return _mm_add_ss(a, b);
-}
-
-GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_sub(glm_f32vec4 a, glm_f32vec4 b)
-{
-	return _mm_sub_ps(a, b);
-}
-
-GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec1_sub(glm_f32vec4 a, glm_f32vec4 b)
-{
-	return _mm_sub_ss(a, b);
-}
-
-GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_mul(glm_f32vec4 a, glm_f32vec4 b)
-{
-	return _mm_mul_ps(a, b);
-}
-
-GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec1_mul(glm_f32vec4 a, glm_f32vec4 b)
-{
-	return _mm_mul_ss(a, b);
-}
-
-GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_div(glm_f32vec4 a, glm_f32vec4 b)
-{
-	return _mm_div_ps(a, b);
-}
-
-GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec1_div(glm_f32vec4 a, glm_f32vec4 b)
-{
-	return _mm_div_ss(a, b);
-}
-
-GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_div_lowp(glm_f32vec4 a, glm_f32vec4 b)
-{
-	return glm_vec4_mul(a, _mm_rcp_ps(b));
-}
-
-GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_swizzle_xyzw(glm_f32vec4 a)
-{
-#	if GLM_ARCH & GLM_ARCH_AVX2_BIT
-		return _mm_permute_ps(a, _MM_SHUFFLE(3, 2, 1, 0));
-#	else
-		return _mm_shuffle_ps(a, a, _MM_SHUFFLE(3, 2, 1, 0));
-#	endif
-}
-
-GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec1_fma(glm_f32vec4 a, glm_f32vec4 b, glm_f32vec4 c)
-{
-#	if (GLM_ARCH & GLM_ARCH_AVX2_BIT) && !(GLM_COMPILER & GLM_COMPILER_CLANG)
-		return _mm_fmadd_ss(a, b, c);
-#	else
-		return _mm_add_ss(_mm_mul_ss(a, b), c);
-#	endif
-}
-
-GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_fma(glm_f32vec4 a, glm_f32vec4 b, glm_f32vec4 c)
-{
-#	if (GLM_ARCH & GLM_ARCH_AVX2_BIT) && !(GLM_COMPILER & GLM_COMPILER_CLANG)
-		return _mm_fmadd_ps(a, b, c);
-#	else
-		return glm_vec4_add(glm_vec4_mul(a, b), c);
-#	endif
-}
-
-GLM_FUNC_QUALIFIER glm_f32vec4 glm_vec4_abs(glm_f32vec4 x)
-{
-	return _mm_and_ps(x, _mm_castsi128_ps(_mm_set1_epi32(0x7FFFFFFF)));
-}
-
-GLM_FUNC_QUALIFIER glm_ivec4 glm_ivec4_abs(glm_ivec4 x)
-{
-#	if GLM_ARCH & GLM_ARCH_SSSE3_BIT
-		return _mm_sign_epi32(x, x);
-#	else
-		glm_ivec4 const sgn0 = _mm_srai_epi32(x, 31);
-		glm_ivec4 const inv0 = _mm_xor_si128(x, sgn0);
-		glm_ivec4 const sub0 = _mm_sub_epi32(inv0, sgn0);
-		return sub0;
-#	endif
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_sign(glm_vec4 x)
-{
-	glm_vec4 const zro0 = _mm_setzero_ps();
-	glm_vec4 const cmp0 = _mm_cmplt_ps(x, zro0);
-	glm_vec4 const cmp1 = _mm_cmpgt_ps(x, zro0);
-	glm_vec4 const and0 = _mm_and_ps(cmp0, _mm_set1_ps(-1.0f));
-	glm_vec4 const and1 = _mm_and_ps(cmp1, _mm_set1_ps(1.0f));
-	glm_vec4 const or0 = _mm_or_ps(and0, and1);
-	return or0;
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_round(glm_vec4 x)
-{
-#	if GLM_ARCH & GLM_ARCH_SSE41_BIT
-		return _mm_round_ps(x, _MM_FROUND_TO_NEAREST_INT);
-#	else
-		glm_vec4 const sgn0 = _mm_castsi128_ps(_mm_set1_epi32(int(0x80000000)));
-		glm_vec4 const and0 = _mm_and_ps(sgn0, x);
-		glm_vec4 const or0 = _mm_or_ps(and0, _mm_set_ps1(8388608.0f));
-		glm_vec4 const add0 = glm_vec4_add(x, or0);
-		glm_vec4 const sub0 = glm_vec4_sub(add0, or0);
-		return sub0;
-#	endif
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_floor(glm_vec4 x)
-{
-#	if GLM_ARCH & GLM_ARCH_SSE41_BIT
-		return _mm_floor_ps(x);
-#	else
-		glm_vec4 const rnd0 = glm_vec4_round(x);
-		glm_vec4 const cmp0 = _mm_cmplt_ps(x, rnd0);
-		glm_vec4 const and0 = _mm_and_ps(cmp0, _mm_set1_ps(1.0f));
-		glm_vec4 const sub0 = glm_vec4_sub(rnd0, and0);
-		return sub0;
-#	endif
-}
-
-/* trunc TODO
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_trunc(glm_vec4 x)
-{
-	return glm_vec4();
-}
-*/
-
-//roundEven
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_roundEven(glm_vec4 x)
-{
-	glm_vec4 const sgn0 = _mm_castsi128_ps(_mm_set1_epi32(int(0x80000000)));
-	glm_vec4 const and0 = _mm_and_ps(sgn0, x);
-	glm_vec4 const or0 = _mm_or_ps(and0, _mm_set_ps1(8388608.0f));
-	glm_vec4 const add0 = glm_vec4_add(x, or0);
-	glm_vec4 const sub0 = glm_vec4_sub(add0, or0);
-	return sub0;
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_ceil(glm_vec4 x)
-{
-#	if GLM_ARCH & GLM_ARCH_SSE41_BIT
-		return _mm_ceil_ps(x);
-#	else
-		glm_vec4 const rnd0 = glm_vec4_round(x);
-		glm_vec4 const cmp0 = _mm_cmpgt_ps(x, rnd0);
-		glm_vec4 const and0 = _mm_and_ps(cmp0, _mm_set1_ps(1.0f));
-		glm_vec4 const add0 = glm_vec4_add(rnd0, and0);
-		return add0;
-#	endif
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_fract(glm_vec4 x)
-{
-	glm_vec4 const flr0 = glm_vec4_floor(x);
-	glm_vec4 const sub0 = glm_vec4_sub(x, flr0);
-	return sub0;
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_mod(glm_vec4 x, glm_vec4 y)
-{
-	glm_vec4 const div0 = glm_vec4_div(x, y);
-	glm_vec4 const flr0 = glm_vec4_floor(div0);
-	glm_vec4 const mul0 = glm_vec4_mul(y, flr0);
-	glm_vec4 const sub0 = glm_vec4_sub(x, mul0);
-	return sub0;
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_clamp(glm_vec4 v, glm_vec4 minVal, glm_vec4 maxVal)
-{
-	glm_vec4 const min0 = _mm_min_ps(v, maxVal);
-	glm_vec4 const max0 = _mm_max_ps(min0, minVal);
-	return max0;
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_mix(glm_vec4 v1, glm_vec4 v2, glm_vec4 a)
-{
-	glm_vec4 const sub0 = glm_vec4_sub(_mm_set1_ps(1.0f), a);
-	glm_vec4 const mul0 = glm_vec4_mul(v1, sub0);
-	glm_vec4 const mad0 = glm_vec4_fma(v2, a, mul0);
-	return mad0;
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_step(glm_vec4 edge, glm_vec4 x)
-{
-	glm_vec4 const cmp = _mm_cmple_ps(x, edge);
-	return _mm_movemask_ps(cmp) == 0 ? _mm_set1_ps(1.0f) : _mm_setzero_ps();
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_smoothstep(glm_vec4 edge0, glm_vec4 edge1, glm_vec4 x)
-{
-	glm_vec4 const sub0 = glm_vec4_sub(x, edge0);
-	glm_vec4 const sub1 = glm_vec4_sub(edge1, edge0);
-	glm_vec4 const div0 = glm_vec4_sub(sub0, sub1);
-	glm_vec4 const clp0 = glm_vec4_clamp(div0, _mm_setzero_ps(), _mm_set1_ps(1.0f));
-	glm_vec4 const mul0 = glm_vec4_mul(_mm_set1_ps(2.0f), clp0);
-	glm_vec4 const sub2 = glm_vec4_sub(_mm_set1_ps(3.0f), mul0);
-	glm_vec4 const mul1 = glm_vec4_mul(clp0, clp0);
-	glm_vec4 const mul2 = glm_vec4_mul(mul1, sub2);
-	return mul2;
-}
-
-// Agner Fog method
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_nan(glm_vec4 x)
-{
-	glm_ivec4 const t1 = _mm_castps_si128(x);						// reinterpret as 32-bit integer
-	glm_ivec4 const t2 = _mm_sll_epi32(t1, _mm_cvtsi32_si128(1));	// shift out sign bit
-	glm_ivec4 const t3 = _mm_set1_epi32(int(0xFF000000));				// exponent mask
-	glm_ivec4 const t4 = _mm_and_si128(t2, t3);						// exponent
-	glm_ivec4 const t5 = _mm_andnot_si128(t3, t2);					// fraction
-	glm_ivec4 const Equal = _mm_cmpeq_epi32(t3, t4);
-	glm_ivec4 const Nequal = _mm_cmpeq_epi32(t5, _mm_setzero_si128());
-	glm_ivec4 const And = _mm_and_si128(Equal, Nequal);
-	return _mm_castsi128_ps(And);									// exponent = all 1s and fraction != 0
-}
-
-// Agner Fog method
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_inf(glm_vec4 x)
-{
-	glm_ivec4 const t1 = _mm_castps_si128(x);										// reinterpret as 32-bit integer
-	glm_ivec4 const t2 = _mm_sll_epi32(t1, _mm_cvtsi32_si128(1));					// shift out sign bit
-	return _mm_castsi128_ps(_mm_cmpeq_epi32(t2, _mm_set1_epi32(int(0xFF000000))));		// exponent is all 1s, fraction is 0
-}
-
-#endif//GLM_ARCH & GLM_ARCH_SSE2_BIT
-#line 7 "glm/detail/func_common_simd.inl"
-
-#include <immintrin.h>
-
-namespace glm{
-namespace detail
-{
-	template<qualifier Q>
-	struct compute_abs_vector<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v)
-		{
-			vec<4, float, Q> result;
-			result.data = glm_vec4_abs(v.data);
-			return result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_abs_vector<4, int, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, int, Q> call(vec<4, int, Q> const& v)
-		{
-			vec<4, int, Q> result;
-			result.data = glm_ivec4_abs(v.data);
-			return result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_floor<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v)
-		{
-			vec<4, float, Q> result;
-			result.data = glm_vec4_floor(v.data);
-			return result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_ceil<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v)
-		{
-			vec<4, float, Q> result;
-			result.data = glm_vec4_ceil(v.data);
-			return result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_fract<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v)
-		{
-			vec<4, float, Q> result;
-			result.data = glm_vec4_fract(v.data);
-			return result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_round<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v)
-		{
-			vec<4, float, Q> result;
-			result.data = glm_vec4_round(v.data);
-			return result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_mod<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& x, vec<4, float, Q> const& y)
-		{
-			vec<4, float, Q> result;
-			result.data = glm_vec4_mod(x.data, y.data);
-			return result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_min_vector<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v1, vec<4, float, Q> const& v2)
-		{
-			vec<4, float, Q> result;
-			result.data = _mm_min_ps(v1.data, v2.data);
-			return result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_min_vector<4, int, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, int, Q> call(vec<4, int, Q> const& v1, vec<4, int, Q> const& v2)
-		{
-			vec<4, int, Q> result;
-			result.data = _mm_min_epi32(v1.data, v2.data);
-			return result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_min_vector<4, uint, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, uint, Q> call(vec<4, uint, Q> const& v1, vec<4, uint, Q> const& v2)
-		{
-			vec<4, uint, Q> result;
-			result.data = _mm_min_epu32(v1.data, v2.data);
-			return result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_max_vector<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v1, vec<4, float, Q> const& v2)
-		{
-			vec<4, float, Q> result;
-			result.data = _mm_max_ps(v1.data, v2.data);
-			return result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_max_vector<4, int, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, int, Q> call(vec<4, int, Q> const& v1, vec<4, int, Q> const& v2)
-		{
-			vec<4, int, Q> result;
-			result.data = _mm_max_epi32(v1.data, v2.data);
-			return result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_max_vector<4, uint, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, uint, Q> call(vec<4, uint, Q> const& v1, vec<4, uint, Q> const& v2)
-		{
-			vec<4, uint, Q> result;
-			result.data = _mm_max_epu32(v1.data, v2.data);
-			return result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_clamp_vector<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& x, vec<4, float, Q> const& minVal, vec<4, float, Q> const& maxVal)
-		{
-			vec<4, float, Q> result;
-			result.data = _mm_min_ps(_mm_max_ps(x.data, minVal.data), maxVal.data);
-			return result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_clamp_vector<4, int, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, int, Q> call(vec<4, int, Q> const& x, vec<4, int, Q> const& minVal, vec<4, int, Q> const& maxVal)
-		{
-			vec<4, int, Q> result;
-			result.data = _mm_min_epi32(_mm_max_epi32(x.data, minVal.data), maxVal.data);
-			return result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_clamp_vector<4, uint, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, uint, Q> call(vec<4, uint, Q> const& x, vec<4, uint, Q> const& minVal, vec<4, uint, Q> const& maxVal)
-		{
-			vec<4, uint, Q> result;
-			result.data = _mm_min_epu32(_mm_max_epu32(x.data, minVal.data), maxVal.data);
-			return result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_mix_vector<4, float, bool, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& x, vec<4, float, Q> const& y, vec<4, bool, Q> const& a)
-		{
-			__m128i const Load = _mm_set_epi32(-static_cast<int>(a.w), -static_cast<int>(a.z), -static_cast<int>(a.y), -static_cast<int>(a.x));
-			__m128 const Mask = _mm_castsi128_ps(Load);
-
-			vec<4, float, Q> Result;
-#			if 0 && GLM_ARCH & GLM_ARCH_AVX
-				Result.data = _mm_blendv_ps(x.data, y.data, Mask);
-#			else
-				Result.data = _mm_or_ps(_mm_and_ps(Mask, y.data), _mm_andnot_ps(Mask, x.data));
-#			endif
-			return Result;
-		}
-	};
-/* FIXME
-	template<qualifier Q>
-	struct compute_step_vector<float, Q, tvec4>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& edge, vec<4, float, Q> const& x)
-		{
-			vec<4, float, Q> Result;
-			result.data = glm_vec4_step(edge.data, x.data);
-			return result;
-		}
-	};
-*/
-	template<qualifier Q>
-	struct compute_smoothstep_vector<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& edge0, vec<4, float, Q> const& edge1, vec<4, float, Q> const& x)
-		{
-			vec<4, float, Q> Result;
-			Result.data = glm_vec4_smoothstep(edge0.data, edge1.data, x.data);
-			return Result;
-		}
-	};
-}//namespace detail
-}//namespace glm
-
-#endif//GLM_ARCH & GLM_ARCH_SSE2_BIT
-#line 792 "glm/detail/func_common.inl"
-#endif
-#line 539 "glm/common.hpp"
-
-#line 3 "glm/detail/func_geometric.inl"
-
-namespace glm{
-namespace detail
-{
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_length
-	{
-		GLM_FUNC_QUALIFIER static T call(vec<L, T, Q> const& v)
-		{
-			return sqrt(dot(v, v));
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_distance
-	{
-		GLM_FUNC_QUALIFIER static T call(vec<L, T, Q> const& p0, vec<L, T, Q> const& p1)
-		{
-			return length(p1 - p0);
-		}
-	};
-
-	template<typename V, typename T, bool Aligned>
-	struct compute_dot{};
-
-	template<typename T, qualifier Q, bool Aligned>
-	struct compute_dot<vec<1, T, Q>, T, Aligned>
-	{
-		GLM_FUNC_QUALIFIER static T call(vec<1, T, Q> const& a, vec<1, T, Q> const& b)
-		{
-			return a.x * b.x;
-		}
-	};
-
-	template<typename T, qualifier Q, bool Aligned>
-	struct compute_dot<vec<2, T, Q>, T, Aligned>
-	{
-		GLM_FUNC_QUALIFIER static T call(vec<2, T, Q> const& a, vec<2, T, Q> const& b)
-		{
-			vec<2, T, Q> tmp(a * b);
-			return tmp.x + tmp.y;
-		}
-	};
-
-	template<typename T, qualifier Q, bool Aligned>
-	struct compute_dot<vec<3, T, Q>, T, Aligned>
-	{
-		GLM_FUNC_QUALIFIER static T call(vec<3, T, Q> const& a, vec<3, T, Q> const& b)
-		{
-			vec<3, T, Q> tmp(a * b);
-			return tmp.x + tmp.y + tmp.z;
-		}
-	};
-
-	template<typename T, qualifier Q, bool Aligned>
-	struct compute_dot<vec<4, T, Q>, T, Aligned>
-	{
-		GLM_FUNC_QUALIFIER static T call(vec<4, T, Q> const& a, vec<4, T, Q> const& b)
-		{
-			vec<4, T, Q> tmp(a * b);
-			return (tmp.x + tmp.y) + (tmp.z + tmp.w);
-		}
-	};
-
-	template<typename T, qualifier Q, bool Aligned>
-	struct compute_cross
-	{
-		GLM_FUNC_QUALIFIER static vec<3, T, Q> call(vec<3, T, Q> const& x, vec<3, T, Q> const& y)
-		{
-			GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'cross' accepts only floating-point inputs");
-
-			return vec<3, T, Q>(
-				x.y * y.z - y.y * x.z,
-				x.z * y.x - y.z * x.x,
-				x.x * y.y - y.x * x.y);
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_normalize
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& v)
-		{
-			GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'normalize' accepts only floating-point inputs");
-
-			return v * inversesqrt(dot(v, v));
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_faceforward
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& N, vec<L, T, Q> const& I, vec<L, T, Q> const& Nref)
-		{
-			GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'normalize' accepts only floating-point inputs");
-
-			return dot(Nref, I) < static_cast<T>(0) ? N : -N;
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_reflect
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& I, vec<L, T, Q> const& N)
-		{
-			return I - N * dot(N, I) * static_cast<T>(2);
-		}
-	};
-
-	template<length_t L, typename T, qualifier Q, bool Aligned>
-	struct compute_refract
-	{
-		GLM_FUNC_QUALIFIER static vec<L, T, Q> call(vec<L, T, Q> const& I, vec<L, T, Q> const& N, T eta)
-		{
-			T const dotValue(dot(N, I));
-			T const k(static_cast<T>(1) - eta * eta * (static_cast<T>(1) - dotValue * dotValue));
-			vec<L, T, Q> const Result =
-                (k >= static_cast<T>(0)) ? (eta * I - (eta * dotValue + std::sqrt(k)) * N) : vec<L, T, Q>(0);
-			return Result;
-		}
-	};
-}//namespace detail
-
-	// length
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType length(genType x)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'length' accepts only floating-point inputs");
-
-		return abs(x);
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER T length(vec<L, T, Q> const& v)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'length' accepts only floating-point inputs");
-
-		return detail::compute_length<L, T, Q, detail::is_aligned<Q>::value>::call(v);
-	}
-
-	// distance
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType distance(genType const& p0, genType const& p1)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'distance' accepts only floating-point inputs");
-
-		return length(p1 - p0);
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER T distance(vec<L, T, Q> const& p0, vec<L, T, Q> const& p1)
-	{
-		return detail::compute_distance<L, T, Q, detail::is_aligned<Q>::value>::call(p0, p1);
-	}
-
-	// dot
-	template<typename T>
-	GLM_FUNC_QUALIFIER T dot(T x, T y)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'dot' accepts only floating-point inputs");
-		return x * y;
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER T dot(vec<L, T, Q> const& x, vec<L, T, Q> const& y)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'dot' accepts only floating-point inputs");
-		return detail::compute_dot<vec<L, T, Q>, T, detail::is_aligned<Q>::value>::call(x, y);
-	}
-
-	// cross
-	template<typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<3, T, Q> cross(vec<3, T, Q> const& x, vec<3, T, Q> const& y)
-	{
-		return detail::compute_cross<T, Q, detail::is_aligned<Q>::value>::call(x, y);
-	}
-/*
-	// normalize
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType normalize(genType const& x)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'normalize' accepts only floating-point inputs");
-
-		return x < genType(0) ? genType(-1) : genType(1);
-	}
-*/
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> normalize(vec<L, T, Q> const& x)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'normalize' accepts only floating-point inputs");
-
-		return detail::compute_normalize<L, T, Q, detail::is_aligned<Q>::value>::call(x);
-	}
-
-	// faceforward
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType faceforward(genType const& N, genType const& I, genType const& Nref)
-	{
-		return dot(Nref, I) < static_cast<genType>(0) ? N : -N;
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> faceforward(vec<L, T, Q> const& N, vec<L, T, Q> const& I, vec<L, T, Q> const& Nref)
-	{
-		return detail::compute_faceforward<L, T, Q, detail::is_aligned<Q>::value>::call(N, I, Nref);
-	}
-
-	// reflect
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType reflect(genType const& I, genType const& N)
-	{
-		return I - N * dot(N, I) * genType(2);
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> reflect(vec<L, T, Q> const& I, vec<L, T, Q> const& N)
-	{
-		return detail::compute_reflect<L, T, Q, detail::is_aligned<Q>::value>::call(I, N);
-	}
-
-	// refract
-	template<typename genType>
-	GLM_FUNC_QUALIFIER genType refract(genType const& I, genType const& N, genType eta)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<genType>::is_iec559, "'refract' accepts only floating-point inputs");
-		genType const dotValue(dot(N, I));
-		genType const k(static_cast<genType>(1) - eta * eta * (static_cast<genType>(1) - dotValue * dotValue));
-		return (eta * I - (eta * dotValue + sqrt(k)) * N) * static_cast<genType>(k >= static_cast<genType>(0));
-	}
-
-	template<length_t L, typename T, qualifier Q>
-	GLM_FUNC_QUALIFIER vec<L, T, Q> refract(vec<L, T, Q> const& I, vec<L, T, Q> const& N, T eta)
-	{
-		GLM_STATIC_ASSERT(std::numeric_limits<T>::is_iec559, "'refract' accepts only floating-point inputs");
-		return detail::compute_refract<L, T, Q, detail::is_aligned<Q>::value>::call(I, N, eta);
-	}
-}//namespace glm
-
-#if GLM_CONFIG_SIMD == GLM_ENABLE
-// #	include "func_geometric_simd.inl"
-#line 1 "glm/detail/func_geometric_simd.inl"
-/// @ref core
-/// @file glm/detail/func_geometric_simd.inl
-
-// #include "../simd/geometric.h"
-#line 1 "glm/simd/geometric.h"
-/// @ref simd
-/// @file glm/simd/geometric.h
-
-
-
-// #include "common.h"
-#line 7 "glm/simd/geometric.h"
-
-#if GLM_ARCH & GLM_ARCH_SSE2_BIT
-
-GLM_FUNC_DECL glm_vec4 glm_vec4_dot(glm_vec4 v1, glm_vec4 v2);
-GLM_FUNC_DECL glm_vec4 glm_vec1_dot(glm_vec4 v1, glm_vec4 v2);
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_length(glm_vec4 x)
-{
-	glm_vec4 const dot0 = glm_vec4_dot(x, x);
-	glm_vec4 const sqt0 = _mm_sqrt_ps(dot0);
-	return sqt0;
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_distance(glm_vec4 p0, glm_vec4 p1)
-{
-	glm_vec4 const sub0 = _mm_sub_ps(p0, p1);
-	glm_vec4 const len0 = glm_vec4_length(sub0);
-	return len0;
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_dot(glm_vec4 v1, glm_vec4 v2)
-{
-#	if GLM_ARCH & GLM_ARCH_AVX_BIT
-		return _mm_dp_ps(v1, v2, 0xff);
-#	elif GLM_ARCH & GLM_ARCH_SSE3_BIT
-		glm_vec4 const mul0 = _mm_mul_ps(v1, v2);
-		glm_vec4 const hadd0 = _mm_hadd_ps(mul0, mul0);
-		glm_vec4 const hadd1 = _mm_hadd_ps(hadd0, hadd0);
-		return hadd1;
-#	else
-		glm_vec4 const mul0 = _mm_mul_ps(v1, v2);
-		glm_vec4 const swp0 = _mm_shuffle_ps(mul0, mul0, _MM_SHUFFLE(2, 3, 0, 1));
-		glm_vec4 const add0 = _mm_add_ps(mul0, swp0);
-		glm_vec4 const swp1 = _mm_shuffle_ps(add0, add0, _MM_SHUFFLE(0, 1, 2, 3));
-		glm_vec4 const add1 = _mm_add_ps(add0, swp1);
-		return add1;
-#	endif
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec1_dot(glm_vec4 v1, glm_vec4 v2)
-{
-#	if GLM_ARCH & GLM_ARCH_AVX_BIT
-		return _mm_dp_ps(v1, v2, 0xff);
-#	elif GLM_ARCH & GLM_ARCH_SSE3_BIT
-		glm_vec4 const mul0 = _mm_mul_ps(v1, v2);
-		glm_vec4 const had0 = _mm_hadd_ps(mul0, mul0);
-		glm_vec4 const had1 = _mm_hadd_ps(had0, had0);
-		return had1;
-#	else
-		glm_vec4 const mul0 = _mm_mul_ps(v1, v2);
-		glm_vec4 const mov0 = _mm_movehl_ps(mul0, mul0);
-		glm_vec4 const add0 = _mm_add_ps(mov0, mul0);
-		glm_vec4 const swp1 = _mm_shuffle_ps(add0, add0, 1);
-		glm_vec4 const add1 = _mm_add_ss(add0, swp1);
-		return add1;
-#	endif
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_cross(glm_vec4 v1, glm_vec4 v2)
-{
-	glm_vec4 const swp0 = _mm_shuffle_ps(v1, v1, _MM_SHUFFLE(3, 0, 2, 1));
-	glm_vec4 const swp1 = _mm_shuffle_ps(v1, v1, _MM_SHUFFLE(3, 1, 0, 2));
-	glm_vec4 const swp2 = _mm_shuffle_ps(v2, v2, _MM_SHUFFLE(3, 0, 2, 1));
-	glm_vec4 const swp3 = _mm_shuffle_ps(v2, v2, _MM_SHUFFLE(3, 1, 0, 2));
-	glm_vec4 const mul0 = _mm_mul_ps(swp0, swp3);
-	glm_vec4 const mul1 = _mm_mul_ps(swp1, swp2);
-	glm_vec4 const sub0 = _mm_sub_ps(mul0, mul1);
-	return sub0;
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_normalize(glm_vec4 v)
-{
-	glm_vec4 const dot0 = glm_vec4_dot(v, v);
-	glm_vec4 const isr0 = _mm_rsqrt_ps(dot0);
-	glm_vec4 const mul0 = _mm_mul_ps(v, isr0);
-	return mul0;
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_faceforward(glm_vec4 N, glm_vec4 I, glm_vec4 Nref)
-{
-	glm_vec4 const dot0 = glm_vec4_dot(Nref, I);
-	glm_vec4 const sgn0 = glm_vec4_sign(dot0);
-	glm_vec4 const mul0 = _mm_mul_ps(sgn0, _mm_set1_ps(-1.0f));
-	glm_vec4 const mul1 = _mm_mul_ps(N, mul0);
-	return mul1;
-}
-
-GLM_FUNC_QUALIFIER glm_vec4 glm_vec4_reflect(glm_vec4 I, glm_vec4 N)
-{
-	glm_vec4 const dot0 = glm_vec4_dot(N, I);
-	glm_vec4 const mul0 = _mm_mul_ps(N, dot0);
-	glm_vec4 const mul1 = _mm_mul_ps(mul0, _mm_set1_ps(2.0f));
-	glm_vec4 const sub0 = _mm_sub_ps(I, mul1);
-	return sub0;
-}
-
-GLM_FUNC_QUALIFIER __m128 glm_vec4_refract(glm_vec4 I, glm_vec4 N, glm_vec4 eta)
-{
-	glm_vec4 const dot0 = glm_vec4_dot(N, I);
-	glm_vec4 const mul0 = _mm_mul_ps(eta, eta);
-	glm_vec4 const mul1 = _mm_mul_ps(dot0, dot0);
-	glm_vec4 const sub0 = _mm_sub_ps(_mm_set1_ps(1.0f), mul0);
-	glm_vec4 const sub1 = _mm_sub_ps(_mm_set1_ps(1.0f), mul1);
-	glm_vec4 const mul2 = _mm_mul_ps(sub0, sub1);
-
-	if(_mm_movemask_ps(_mm_cmplt_ss(mul2, _mm_set1_ps(0.0f))) == 0)
-		return _mm_set1_ps(0.0f);
-
-	glm_vec4 const sqt0 = _mm_sqrt_ps(mul2);
-	glm_vec4 const mad0 = glm_vec4_fma(eta, dot0, sqt0);
-	glm_vec4 const mul4 = _mm_mul_ps(mad0, N);
-	glm_vec4 const mul5 = _mm_mul_ps(eta, I);
-	glm_vec4 const sub2 = _mm_sub_ps(mul5, mul4);
-
-	return sub2;
-}
-
-#endif//GLM_ARCH & GLM_ARCH_SSE2_BIT
-#line 5 "glm/detail/func_geometric_simd.inl"
-
-#if GLM_ARCH & GLM_ARCH_SSE2_BIT
-
-namespace glm{
-namespace detail
-{
-	template<qualifier Q>
-	struct compute_length<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static float call(vec<4, float, Q> const& v)
-		{
-			return _mm_cvtss_f32(glm_vec4_length(v.data));
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_distance<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static float call(vec<4, float, Q> const& p0, vec<4, float, Q> const& p1)
-		{
-			return _mm_cvtss_f32(glm_vec4_distance(p0.data, p1.data));
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_dot<vec<4, float, Q>, float, true>
-	{
-		GLM_FUNC_QUALIFIER static float call(vec<4, float, Q> const& x, vec<4, float, Q> const& y)
-		{
-			return _mm_cvtss_f32(glm_vec1_dot(x.data, y.data));
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_cross<float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<3, float, Q> call(vec<3, float, Q> const& a, vec<3, float, Q> const& b)
-		{
-			__m128 const set0 = _mm_set_ps(0.0f, a.z, a.y, a.x);
-			__m128 const set1 = _mm_set_ps(0.0f, b.z, b.y, b.x);
-			__m128 const xpd0 = glm_vec4_cross(set0, set1);
-
-			vec<4, float, Q> Result;
-			Result.data = xpd0;
-			return vec<3, float, Q>(Result);
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_normalize<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v)
-		{
-			vec<4, float, Q> Result;
-			Result.data = glm_vec4_normalize(v.data);
-			return Result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_faceforward<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& N, vec<4, float, Q> const& I, vec<4, float, Q> const& Nref)
-		{
-			vec<4, float, Q> Result;
-			Result.data = glm_vec4_faceforward(N.data, I.data, Nref.data);
-			return Result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_reflect<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& I, vec<4, float, Q> const& N)
-		{
-			vec<4, float, Q> Result;
-			Result.data = glm_vec4_reflect(I.data, N.data);
-			return Result;
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_refract<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& I, vec<4, float, Q> const& N, float eta)
-		{
-			vec<4, float, Q> Result;
-			Result.data = glm_vec4_refract(I.data, N.data, _mm_set1_ps(eta));
-			return Result;
-		}
-	};
-}//namespace detail
-}//namespace glm
-
-#elif GLM_ARCH & GLM_ARCH_NEON_BIT
-namespace glm{
-namespace detail
-{
-	template<qualifier Q>
-	struct compute_length<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static float call(vec<4, float, Q> const& v)
-		{
-			return sqrt(compute_dot<vec<4, float, Q>, float, true>::call(v, v));
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_distance<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static float call(vec<4, float, Q> const& p0, vec<4, float, Q> const& p1)
-		{
-			return compute_length<4, float, Q, true>::call(p1 - p0);
-		}
-	};
-
-
-	template<qualifier Q>
-	struct compute_dot<vec<4, float, Q>, float, true>
-	{
-		GLM_FUNC_QUALIFIER static float call(vec<4, float, Q> const& x, vec<4, float, Q> const& y)
-		{
-#if GLM_ARCH & GLM_ARCH_ARMV8_BIT
-			float32x4_t v = vmulq_f32(x.data, y.data);
-			return vaddvq_f32(v);
-#else  // Armv7a with Neon
-			float32x4_t p = vmulq_f32(x.data, y.data);
-			float32x2_t v = vpadd_f32(vget_low_f32(p), vget_high_f32(p));
-			v = vpadd_f32(v, v);
-			return vget_lane_f32(v, 0);
-#endif
-		}
-	};
-
-	template<qualifier Q>
-	struct compute_normalize<4, float, Q, true>
-	{
-		GLM_FUNC_QUALIFIER static vec<4, float, Q> call(vec<4, float, Q> const& v)
-		{
-			float32x4_t p = vmulq_f32(v.data, v.data);
-#if GLM_ARCH & GLM_ARCH_ARMV8_BIT
-			p = vpaddq_f32(p, p);
-			p = vpaddq_f32(p, p);
-#else
-			float32x2_t t = vpadd_f32(vget_low_f32(p), vget_high_f32(p));
-			t = vpadd_f32(t, t);
-			p = vcombine_f32(t, t);
-#endif
-
-			float32x4_t vd = vrsqrteq_f32(p);
-			vec<4, float, Q> Result;
-			Result.data = vmulq_f32(v.data, vd);
-			return Result;
-		}
-	};
-}//namespace detail
-}//namespace glm
-
-#endif//GLM_ARCH & GLM_ARCH_SSE2_BIT
-#line 243 "glm/detail/func_geometric.inl"
-#endif
-#line 117 "glm/geometric.hpp"
 #line 2 "glm/detail/func_matrix.inl"
 #include <limits>
 
@@ -28991,571 +30009,6 @@ namespace glm
 #line 24 "plugin-native/src/backend/cpu/collide.h"
 
 // #include "drape/drape.h"
-#line 1 "plugin-native/include/drape/drape.h"
-/*
- * Drape: cloth simulation for games. The public C ABI (C99).
- *
- * Contents, by topic: 1 lifecycle (status, versions, worlds); 2 cloth (creation, masses, pins,
- * state, stepping, sleeping); 3 parameters (models, stiffness, substeps, stability estimate);
- * 4 output (reading positions and normals, info, statistics); 5 collision (colliders,
- * self-collision); 6 interaction (touch drag, grabs, owner transform); 7 GPU (GLES backend);
- * 8 Unity (render event).
- *
- * Rules:
- *  - every function returns a drape_status; results come back through out-pointers;
- *  - on failure drape_last_error() holds a thread-local, human-readable message and the object
- *    the call was made on is unchanged;
- *  - handles (drape_world*, drape_cloth*) are opaque pointer-sized ids (slot index + generation),
- *    not addresses: a destroyed object's handle is refused (DRAPE_ERROR_INVALID_HANDLE) by every
- *    call, from any thread, even after its slot is reused; a world handle is never a cloth handle;
- *  - structs shared with C# name their twin; a test checks size and field offsets. The enum and
- *    struct blocks between GENERATED markers come from tools/abi/abi.py (one description of
- *    type, unit, default, range and doc for each field; do not edit them here).
- *
- * struct_size (versioning): every struct starts with it. A struct can grow at its end (a new
- * "revision"); the library accepts every size it has shipped:
- *  - structs passed in: set struct_size = sizeof the struct you compiled against. An older
- *    revision's size is accepted and the fields it lacks take their documented defaults; any
- *    other size is DRAPE_ERROR_STRUCT_SIZE.
- *  - structs filled by the library (drape_stats, drape_self_collision_desc, drape_stability):
- *    set struct_size likewise; the library writes that revision's fields only.
- *    drape_cloth_get_info, drape_cloth_get_params and drape_params_default, which ABI 1 callers
- *    were not asked to prepare, read any size the library never shipped (0, garbage) as the
- *    first revision's; all three set struct_size to the size written.
- *
- * Threading: a world and the cloths in it may be used from one thread at a time (any thread;
- * hand over with the usual synchronisation, e.g. a join or a mutex). Different worlds may be used
- * from different threads at the same time. Functions taking no world or cloth (drape_abi_version,
- * drape_last_error, *_default, drape_estimate_stability) may be called from any thread at any
- * time. drape_last_error() is per thread. The CPU_THREADED backend runs its own workers only
- * inside drape_world_step / drape_cloth_step (and spreads a world's CPU cloths over them); they
- * are idle when the call returns. GL: a GLES cloth is used only on the thread whose EGL context
- * created it, with that context current (immediate use), or its GL work runs on Unity's render
- * thread (see 7 GPU); CPU cloths never touch GL. Checked under ThreadSanitizer:
- * tests/native/test_threading.cpp (.ci/hardening.sh tsan).
- *
- * Units: metres, kilograms, seconds. Positions are in simulation (world) space.
- */
-#ifndef DRAPE_DRAPE_H
-#define DRAPE_DRAPE_H
-
-#include <stddef.h>
-#include <stdint.h>
-
-#ifdef __cplusplus
-extern "C" {
-#endif
-
-#if defined(_WIN32)
-#  if defined(DRAPE_BUILDING_LIBRARY)
-#    define DRAPE_API __declspec(dllexport)
-#  else
-#    define DRAPE_API __declspec(dllimport)
-#  endif
-#else
-#  define DRAPE_API __attribute__((visibility("default")))
-#endif
-
-/* ================================ 1. Lifecycle ================================================ */
-
-/** Bumped on any incompatible change of this header (growing a struct at its end is compatible). */
-#define DRAPE_ABI_VERSION 1
-
-/** Longest step, s: drape_world_step / drape_cloth_step refuse dt > DRAPE_MAX_DT. */
-#define DRAPE_MAX_DT 1.0f
-/** Shortest step that does anything, s: 0 < dt < DRAPE_MIN_DT is accepted (DRAPE_OK) and is a
- *  no-op (nothing moves; pending pin moves, drag and collider motion wait for the next step). */
-#define DRAPE_MIN_DT 1e-6f
-
-/* GENERATED BEGIN drape_status */
-/* C# twin: Drape.Core.Status. */
-typedef enum drape_status {
-    DRAPE_OK = 0,
-    DRAPE_ERROR_NULL_POINTER = 1, /**< a required pointer was NULL */
-    DRAPE_ERROR_INVALID_HANDLE = 2, /**< handle is not a live object of the right kind */
-    DRAPE_ERROR_STRUCT_SIZE = 3, /**< struct_size is none of the sizes this library has shipped */
-    DRAPE_ERROR_INVALID_ENUM = 4, /**< enum value out of range */
-    DRAPE_ERROR_INVALID_ARGUMENT = 5, /**< a size, count or value is out of its allowed range */
-    DRAPE_ERROR_NOT_FINITE = 6, /**< a float input was NaN or infinite */
-    DRAPE_ERROR_INDEX_OUT_OF_RANGE = 7, /**< a vertex or triangle index is out of range */
-    DRAPE_ERROR_DEGENERATE_MESH = 8, /**< zero-area or repeated-index triangle, or no edges */
-    DRAPE_ERROR_BUFFER_TOO_SMALL = 9, /**< caller memory/layout cannot hold the output */
-    DRAPE_ERROR_BACKEND_UNAVAILABLE = 10, /**< backend not compiled in or not usable here */
-    DRAPE_ERROR_UNSTABLE = 11, /**< step diverged; the last good state was restored */
-    DRAPE_ERROR_OUT_OF_MEMORY = 12,
-    DRAPE_ERROR_GL = 13, /**< OpenGL ES error (message carries the GL log) */
-    DRAPE_ERROR_INTERNAL = 14
-} drape_status;
-/* GENERATED END drape_status */
-
-/* GENERATED BEGIN drape_backend */
-/* C# twin: Drape.Core.Backend. */
-typedef enum drape_backend {
-    DRAPE_BACKEND_CPU = 0, /**< one thread, deterministic (same input -> same bits) */
-    DRAPE_BACKEND_CPU_THREADED = 1, /**< the world's worker pool; same results as CPU */
-    DRAPE_BACKEND_GLES = 2 /**< OpenGL ES 3.0 transform feedback */
-} drape_backend;
-/* GENERATED END drape_backend */
-
-typedef struct drape_world drape_world;
-typedef struct drape_cloth drape_cloth;
-
-/* GENERATED BEGIN drape_world_desc */
-/* C# twin: Drape.Core.WorldDesc. */
-typedef struct drape_world_desc {
-    uint32_t struct_size;
-    uint32_t thread_count; /**< workers for CPU_THREADED including the caller; 0 = hardware count. Range [0,
-                                256]. Default 0 */
-} drape_world_desc;
-/* GENERATED END drape_world_desc */
-
-DRAPE_API uint32_t drape_abi_version(void);
-/** Human-readable message for the last failure on this thread ("" if none). Never NULL. */
-DRAPE_API const char* drape_last_error(void);
-/** *out_available = 1 if cloths with this backend can be created now. */
-DRAPE_API drape_status drape_backend_available(uint32_t backend, uint32_t* out_available);
-
-DRAPE_API drape_status drape_world_create(const drape_world_desc* desc, drape_world** out_world);
-/** Destroys the world and every cloth still in it (their handles become invalid). */
-DRAPE_API drape_status drape_world_destroy(drape_world* world);
-/** Steps every cloth of the world by dt seconds (0 < dt <= DRAPE_MAX_DT; below DRAPE_MIN_DT a
- *  no-op). Returns the first failure; the other cloths are still stepped. */
-DRAPE_API drape_status drape_world_step(drape_world* world, float dt);
-
-/* ================================ 2. Cloth ==================================================== */
-/* Limits: at most 4194304 (2^22) vertices per cloth; coordinates within 1e6 m; total mass in
- * (0, 1e6] kg. */
-
-/* GENERATED BEGIN drape_cloth_desc */
-/* C# twin: Drape.Core.ClothDesc. Common to grid and mesh creation. */
-typedef struct drape_cloth_desc {
-    uint32_t struct_size;
-    uint32_t backend; /**< drape_backend. Default CPU */
-    float total_mass; /**< kg, spread over vertices by area. Range (0, 1e6]. Default 1 */
-} drape_cloth_desc;
-/* GENERATED END drape_cloth_desc */
-
-/* GENERATED BEGIN drape_grid_desc */
-/* C# twin: Drape.Core.GridDesc. Vertex (c, r) is at origin + axis_u*width*c/(columns-1) +
- * axis_v*height*r/(rows-1); caller vertex index = r*columns + c. */
-typedef struct drape_grid_desc {
-    uint32_t struct_size;
-    uint32_t columns; /**< vertices per row, >= 1 (columns*rows >= 2) */
-    uint32_t rows; /**< >= 1 */
-    float width; /**< m, > 0 */
-    float height; /**< m, > 0 */
-    float origin[3]; /**< m, position of vertex (0,0) */
-    float axis_u[3]; /**< unit direction of increasing column; all zero = +x */
-    float axis_v[3]; /**< unit direction of increasing row; all zero = -z */
-} drape_grid_desc;
-/* GENERATED END drape_grid_desc */
-
-/* GENERATED BEGIN drape_mesh_desc */
-/* C# twin: Drape.Core.MeshDesc. Vertices closer than weld_distance are simulated as one (Unity splits
- * vertices at UV seams) and written back to every copy on output. The arrays are read during the create call
- * only. */
-typedef struct drape_mesh_desc {
-    uint32_t struct_size;
-    uint32_t vertex_count; /**< >= 3 */
-    const float* positions; /**< vertex_count * 3 floats */
-    uint32_t index_count; /**< multiple of 3, >= 3 */
-    const uint32_t* indices; /**< triangle list */
-    float weld_distance; /**< m, >= 0; 0 welds only bit-identical positions */
-} drape_mesh_desc;
-/* GENERATED END drape_mesh_desc */
-
-DRAPE_API drape_status drape_cloth_create_grid(drape_world* world, const drape_cloth_desc* desc,
-                                               const drape_grid_desc* grid, drape_cloth** out_cloth);
-DRAPE_API drape_status drape_cloth_create_mesh(drape_world* world, const drape_cloth_desc* desc,
-                                               const drape_mesh_desc* mesh, drape_cloth** out_cloth);
-DRAPE_API drape_status drape_cloth_destroy(drape_cloth* cloth);
-
-/** Steps one cloth by dt seconds (0 < dt <= DRAPE_MAX_DT; below DRAPE_MIN_DT a no-op).
- *  DRAPE_ERROR_UNSTABLE: the step diverged and the state was rolled back; pin and grab moves
- *  asked for before it are kept and made by the next step. */
-DRAPE_API drape_status drape_cloth_step(drape_cloth* cloth, float dt);
-
-/** Per caller vertex, >= 0 and finite; 0 pins the vertex where it is. Welded copies take the
- *  smallest value given for them. count must equal the vertex count. */
-DRAPE_API drape_status drape_cloth_set_inverse_masses(drape_cloth* cloth, const float* inverse_masses,
-                                                      uint32_t count);
-
-/* GENERATED BEGIN drape_pin */
-/* C# twin: Drape.Core.Pin. Pins a caller vertex (inverse mass 0) at a target; pinning again moves it (the
- * move is spread over the next step's substeps). */
-typedef struct drape_pin {
-    uint32_t struct_size;
-    uint32_t vertex; /**< caller vertex index */
-    float position[3]; /**< m, target */
-} drape_pin;
-/* GENERATED END drape_pin */
-
-/** Pins (or moves already pinned) vertices; see drape_pin. */
-DRAPE_API drape_status drape_cloth_set_pins(drape_cloth* cloth, const drape_pin* pins, uint32_t count);
-/** Releases pins: the vertices get back the inverse mass they had before pinning. */
-DRAPE_API drape_status drape_cloth_release_pins(drape_cloth* cloth, const uint32_t* vertices, uint32_t count);
-/** Teleports vertices (count*3 floats, caller order) and zeroes velocities. Rest lengths keep. */
-DRAPE_API drape_status drape_cloth_set_positions(drape_cloth* cloth, const float* positions, uint32_t count);
-/** Sets velocities (count*3 floats, caller order, m/s). */
-DRAPE_API drape_status drape_cloth_set_velocities(drape_cloth* cloth, const float* velocities, uint32_t count);
-
-/* Sleeping (CPU backends; GLES: DRAPE_ERROR_BACKEND_UNAVAILABLE). */
-/* GENERATED BEGIN drape_sleep_desc */
-/* C# twin: Drape.Core.SleepDesc. A cloth whose fastest particle stays below `threshold` for `time` seconds of
- * steps falls asleep: its velocities are zeroed and drape_cloth_step returns at once without touching the
- * state. Colliders, pins, drag, grab, owner transform, parameters, masses, positions or velocities that
- * change wake it. Default: threshold 0 (never sleeps). */
-typedef struct drape_sleep_desc {
-    uint32_t struct_size;
-    float threshold; /**< m/s, 0 = never sleep. Typical 0.01. Range [0, 100]. Default 0 */
-    float time; /**< s, how long motion must stay below threshold. Typical 1. Range [0, 100]. Default 0 */
-} drape_sleep_desc;
-/* GENERATED END drape_sleep_desc */
-
-DRAPE_API drape_status drape_cloth_set_sleep(drape_cloth* cloth, const drape_sleep_desc* desc);
-/** Wakes the cloth (it sleeps again after `time` seconds of stillness). */
-DRAPE_API drape_status drape_cloth_wake(drape_cloth* cloth);
-
-/* ================================ 3. Parameters =============================================== */
-
-/** Most substeps a step uses, automatic or given (params.substeps). MASS_SPRING whose stability
- *  bound asks for more is stepped with DRAPE_MAX_SUBSTEPS and may diverge (DRAPE_ERROR_UNSTABLE,
- *  rolled back): drape_estimate_stability tells beforehand. */
-#define DRAPE_MAX_SUBSTEPS 1000
-/** Most solver iterations per substep (params.iterations). */
-#define DRAPE_MAX_ITERATIONS 1000
-
-/* GENERATED BEGIN drape_model */
-/* C# twin: Drape.Core.Model. */
-typedef enum drape_model {
-    DRAPE_MODEL_MASS_SPRING = 0, /**< Hooke springs + damping, Verlet (paper eq. 1-3) */
-    DRAPE_MODEL_PBD = 1, /**< stretch constraints, stiffness in [0,1] (paper eq. 4-8) */
-    DRAPE_MODEL_XPBD = 2 /**< compliance = 1/stiffness in physical units; the default */
-} drape_model;
-/* GENERATED END drape_model */
-
-/* GENERATED BEGIN drape_group */
-/* C# twin: Drape.Core.Group. Spring / constraint groups of the 12-neighbour stencil (grid) or of a mesh. */
-typedef enum drape_group {
-    DRAPE_GROUP_STRUCTURAL = 0, /**< grid: (+-1,0),(0,+-1); mesh: triangle edges */
-    DRAPE_GROUP_SHEAR = 1, /**< grid: (+-1,+-1); mesh: none */
-    DRAPE_GROUP_BEND = 2, /**< grid: (+-2,0),(0,+-2); mesh: vertices opposite each edge */
-    DRAPE_GROUP_COUNT = 3
-} drape_group;
-/* GENERATED END drape_group */
-
-/* GENERATED BEGIN drape_params */
-/* C# twin: Drape.Core.Params. Settable at any time; drape_params_default fills the defaults. */
-typedef struct drape_params {
-    uint32_t struct_size;
-    uint32_t model; /**< drape_model. Default XPBD */
-    float stiffness[3]; /**< per drape_group. MASS_SPRING, XPBD: N/m per spring (0 = group off); PBD: fraction
-                             in [0,1] per iteration. Range [0, 1e9]. Default 2000, 1000, 200 */
-    float damping; /**< N*s/m, along each spring (eq. 2; XPBD: constraint damping). Range [0, 1e6]. Default
-                        0.05 */
-    float gravity[3]; /**< m/s^2. Length <= 10000. Default (0, -9.81, 0) */
-    float wind[3]; /**< m/s, air velocity. Length <= 10000. Default (0, 0, 0) */
-    float air_drag; /**< 1/s, a += air_drag*(wind - v). Range [0, 1000]. Default 0.1 */
-    uint32_t substeps; /**< per step; 0 = automatic (MASS_SPRING: from the stability bound, see
-                            drape_estimate_stability; PBD, XPBD: 16 "small steps"). Automatic or given, at
-                            most DRAPE_MAX_SUBSTEPS. Range [0, DRAPE_MAX_SUBSTEPS]. Default 0 */
-    uint32_t iterations; /**< solver iterations per substep (PBD, XPBD). Range [1, DRAPE_MAX_ITERATIONS].
-                              Default 1 */
-    float max_stretch; /**< tethers (long-range attachments, Kim et al. 2012): every particle stays within (1
-                            + max_stretch) x its rest distance along the cloth to the nearest pinned particle.
-                            Fraction; 0 = off. Range [0, 100]. Default 0.1 */
-} drape_params;
-/* GENERATED END drape_params */
-
-/** Fills every field with its default and struct_size (see "struct_size" above). */
-DRAPE_API drape_status drape_params_default(drape_params* out_params);
-/** Errors: NULL_POINTER, STRUCT_SIZE, INVALID_ENUM (model), NOT_FINITE, INVALID_ARGUMENT (a field
- *  out of its range; PBD stiffness above 1). Takes effect at the next step. */
-DRAPE_API drape_status drape_cloth_set_params(drape_cloth* cloth, const drape_params* params);
-/** The cloth's parameters (see "struct_size" above for out_params->struct_size). */
-DRAPE_API drape_status drape_cloth_get_params(const drape_cloth* cloth, drape_params* out_params);
-
-/* GENERATED BEGIN drape_stability */
-/* C# twin: Drape.Core.StabilityEstimate. What drape_estimate_stability says about a cloth before it exists:
- * the substeps a step of dt would use and the explicit stability bound behind MASS_SPRING's automatic choice
- * (the same computation a cloth runs when its parameters or masses change). */
-typedef struct drape_stability {
-    uint32_t struct_size;
-    uint32_t substeps; /**< substeps a step of dt uses with these parameters (params.substeps, or the
-                            automatic choice, capped at DRAPE_MAX_SUBSTEPS) */
-    uint32_t stable_substeps; /**< fewest substeps that keep MASS_SPRING within its explicit stability bound
-                                   h*omega_max < 2 (with the library's safety factor), not capped (UINT32_MAX
-                                   if beyond); 1 for PBD and XPBD */
-    float max_stable_substep; /**< s, MASS_SPRING: largest stable substep h (the tightest particle); 0 when
-                                   nothing bounds it (PBD, XPBD, no active spring) */
-    uint32_t stable; /**< 1 if substeps >= stable_substeps */
-} drape_stability;
-/* GENERATED END drape_stability */
-
-/** Stability estimate for a cloth that is not (yet) created: the cloth desc and exactly one of
- *  grid or mesh (the other NULL) as for creation, the parameters, and a step dt (as for
- *  drape_cloth_step). Runs the computation the cloth itself runs (area-weighted masses, springs
- *  per particle, no pins: pinning only removes particles from the bound). Validation and errors
- *  as for drape_cloth_create_* and drape_cloth_set_params; the backend need not be available. */
-DRAPE_API drape_status drape_estimate_stability(const drape_cloth_desc* desc, const drape_grid_desc* grid,
-                                                const drape_mesh_desc* mesh, const drape_params* params, float dt,
-                                                drape_stability* out_estimate);
-
-/* ================================ 4. Output =================================================== */
-
-/* GENERATED BEGIN drape_vertex_layout */
-/* C# twin: Drape.Core.VertexLayout. Output goes to dst + i*stride + offset for caller vertex i. */
-typedef struct drape_vertex_layout {
-    uint32_t struct_size;
-    uint32_t stride; /**< bytes between vertices, >= 12, multiple of 4 */
-    int32_t position_offset; /**< bytes, multiple of 4, or -1 = do not write */
-    int32_t normal_offset; /**< bytes, multiple of 4, or -1 = do not write */
-    float origin[3]; /**< m, positions are written relative to this point of simulation space (position -
-                          origin, computed in double): far from the world origin, write around a point near
-                          the cloth (the renderer's transform, a floating origin) to keep float precision.
-                          Must be 0 for drape_cloth_set_output_buffer. Default (0, 0, 0). Added in struct
-                          revision 1 (older sizes still accepted) */
-} drape_vertex_layout;
-/* GENERATED END drape_vertex_layout */
-
-/** Writes positions and/or normals of every caller vertex into dst (dst_size bytes). */
-DRAPE_API drape_status drape_cloth_read(const drape_cloth* cloth, const drape_vertex_layout* layout,
-                                        void* dst, size_t dst_size);
-
-/* GENERATED BEGIN drape_cloth_info */
-/* C# twin: Drape.Core.ClothInfo. */
-typedef struct drape_cloth_info {
-    uint32_t struct_size;
-    uint32_t vertex_count; /**< caller vertices (before welding) */
-    uint32_t particle_count; /**< simulated particles (after welding) */
-    uint32_t spring_count[3]; /**< springs/constraints per drape_group */
-    uint32_t triangle_count; /**< 0 for a grid with a single row or column */
-    uint32_t backend; /**< drape_backend */
-} drape_cloth_info;
-/* GENERATED END drape_cloth_info */
-
-/** Sizes of the cloth (see "struct_size" above for out_info->struct_size). */
-DRAPE_API drape_status drape_cloth_get_info(const drape_cloth* cloth, drape_cloth_info* out_info);
-
-/* GENERATED BEGIN drape_stats */
-/* C# twin: Drape.Core.Stats. Describes the last step. */
-typedef struct drape_stats {
-    uint32_t struct_size;
-    float step_ms; /**< ms, wall time of the last step */
-    uint32_t substeps; /**< substeps used by the last step */
-    uint32_t iterations; /**< iterations per substep used by the last step */
-    float max_strain; /**< max over structural+shear springs of |l/L0 - 1| */
-    float rms_strain;
-    float kinetic_energy; /**< J */
-    float potential_energy; /**< J, gravity relative to y = 0 */
-    float elastic_energy; /**< J, springs (MASS_SPRING, XPBD); 0 for PBD */
-    uint32_t non_finite; /**< 1 if the last step produced NaN/Inf (and was rolled back) */
-    uint32_t unstable_steps; /**< steps rolled back since creation */
-    uint32_t sleeping; /**< 1 if the cloth is asleep (drape_sleep_desc): steps do no work. Added in struct
-                            revision 1 (older sizes still accepted) */
-} drape_stats;
-/* GENERATED END drape_stats */
-
-/** Statistics of the last step; out_stats->struct_size must be a size drape_stats has shipped. */
-DRAPE_API drape_status drape_cloth_get_stats(const drape_cloth* cloth, drape_stats* out_stats);
-
-/* ================================ 5. Collision ================================================ */
-/* On a GLES cloth colliders run on the GPU like on the CPU (a collision pass per substep,
- * compiled only while the cloth has colliders; it tests every collider, as the cloth's bounds are
- * on the GPU). Self-collision is CPU-only. */
-
-/** Most colliders one cloth takes (drape_cloth_set_colliders). */
-#define DRAPE_MAX_COLLIDERS 64
-
-/* GENERATED BEGIN drape_collider_shape */
-/* C# twin: Drape.Core.ColliderShape. */
-typedef enum drape_collider_shape {
-    DRAPE_COLLIDER_SPHERE = 0, /**< size[0] = radius (> 0) */
-    DRAPE_COLLIDER_CAPSULE = 1, /**< size[0] = radius (> 0), size[1] = half length (>= 0) of the segment along
-                                     local y between the cap centres (Unity: max(0, height/2 - radius)) */
-    DRAPE_COLLIDER_BOX = 2, /**< size = half extents (each > 0), oriented by rotation */
-    DRAPE_COLLIDER_PLANE = 3 /**< infinite; local +y (rotation applied to (0,1,0)) points to the free side,
-                                  position is a point on it; size ignored */
-} drape_collider_shape;
-/* GENERATED END drape_collider_shape */
-
-/* GENERATED BEGIN drape_collider */
-/* C# twin: Drape.Core.ColliderDesc. One element of the array given to drape_cloth_set_colliders. */
-typedef struct drape_collider {
-    uint32_t struct_size;
-    uint32_t shape; /**< drape_collider_shape */
-    uint32_t id; /**< host's stable id, unique in the array. The collider moves from the transform it had
-                      under the same id in the previous call to this one, interpolated across the next step's
-                      substeps (no tunnelling); a new id starts at rest */
-    float position[3]; /**< m, simulation space */
-    float rotation[4]; /**< unit quaternion x, y, z, w (|q| within 1e-3 of 1; renormalised). Default (0, 0, 0,
-                            1) */
-    float size[3]; /**< m, see drape_collider_shape */
-    float margin; /**< m, in [0, 10]: distance kept between the cloth and the surface (cloth thickness plus
-                       skin); typical 0.005 */
-    float friction; /**< Coulomb coefficient in [0, 10]; 0 = frictionless. Typical 0.3-0.8 */
-} drape_collider;
-/* GENERATED END drape_collider */
-
-/** Replaces the cloth's colliders (call once per frame with the current transforms; count 0
- *  removes them all). Nothing is checked against the cloth before the next step; with no
- *  colliders, or none whose bounds touch the cloth's, the step does no collision work.
- *  Errors: NULL_POINTER, STRUCT_SIZE (per element), INVALID_ENUM (shape), NOT_FINITE,
- *  INVALID_ARGUMENT (count > DRAPE_MAX_COLLIDERS, sizes (each <= 1e6 m), margin, friction,
- *  duplicate id, non-unit rotation). A change of any collider wakes a sleeping cloth. */
-DRAPE_API drape_status drape_cloth_set_colliders(drape_cloth* cloth, const drape_collider* colliders,
-                                                 uint32_t count);
-
-/* GENERATED BEGIN drape_self_collision_desc */
-/* C# twin: Drape.Core.SelfCollisionDesc. Self-collision: particles of the cloth that are not neighbours in
- * the rest mesh are kept at least `thickness` apart, so a cloth folding onto itself does not pass through
- * itself. Resolved once per substep (after the solve, before colliders) over candidate pairs from a spatial
- * hash, rebuilt only when the cloth has moved enough to need it; pairs that share a spring or lie closer than
- * 1.5 x thickness in the rest mesh never collide, and a pair that passed through each other within a substep
- * is pushed back to the side it came from. It works on particles: with a thickness well below the particle
- * spacing a particle can slip through the middle of a grid cell of another layer; the particle spacing is a
- * good thickness. A particle moving more than one thickness per substep relative to the cloth's mean motion
- * may pass through (raise substeps). Off by default: a cloth without it does no extra work. CPU backends only
- * (GLES: not yet). */
-typedef struct drape_self_collision_desc {
-    uint32_t struct_size;
-    uint32_t enabled; /**< 1 = on, 0 = off (default). Default 0 */
-    float thickness; /**< m, distance kept between non-neighbour particles: > 0 when enabled (>= 0 when not),
-                          at most 1/4 of the diagonal of the cloth's rest bounding box. Typical: the particle
-                          spacing. Default 0. Default 0 */
-    float friction; /**< Coulomb coefficient between layers in [0, 10]; 0 = frictionless (default). Typical
-                         0.1-0.5. Default 0 */
-} drape_self_collision_desc;
-/* GENERATED END drape_self_collision_desc */
-
-/** Turns self-collision on or off (see drape_self_collision_desc); takes effect at the next step.
- *  Errors: NULL_POINTER, STRUCT_SIZE, NOT_FINITE (thickness, friction), INVALID_ARGUMENT (enabled
- *  not 0/1, thickness or friction out of range), BACKEND_UNAVAILABLE (enabling on a GLES cloth;
- *  turning it off there is accepted and does nothing). A change wakes a sleeping cloth. */
-DRAPE_API drape_status drape_cloth_set_self_collision(drape_cloth* cloth, const drape_self_collision_desc* desc);
-/** Current setting (out_desc->struct_size must be set). A new cloth: enabled 0, thickness 0, friction 0. */
-DRAPE_API drape_status drape_cloth_get_self_collision(const drape_cloth* cloth, drape_self_collision_desc* out_desc);
-
-/* ================================ 6. Interaction ============================================== */
-/* Touch drag runs on every backend (a GLES cloth reads its positions back once per
- * drape_cloth_drag). Grabs and the owner transform are CPU-only: they return
- * DRAPE_ERROR_BACKEND_UNAVAILABLE for GLES cloths. Limits: 16 touches per drag call, 16 grabs
- * held at once, pick radius in (0, 1e4] px, screen positions within 1e6 px. */
-
-/* GENERATED BEGIN drape_view */
-/* C# twin: Drape.Core.View. Matrices are 4x4, column-major (glm, OpenGL and Unity's Matrix4x4 memory order:
- * element (row r, column c) at [c*4 + r]); OpenGL clip conventions (NDC in [-1,1]^3; Unity:
- * GL.GetGPUProjectionMatrix is not needed, pass Camera.projectionMatrix). */
-typedef struct drape_view {
-    uint32_t struct_size;
-    float world[16]; /**< simulation space -> world (identity if the cloth simulates in world space) */
-    float view[16]; /**< world -> camera */
-    float projection[16]; /**< camera -> clip */
-    float viewport[2]; /**< px, width and height (> 0); screen origin bottom-left */
-} drape_view;
-/* GENERATED END drape_view */
-
-/* GENERATED BEGIN drape_touch */
-/* C# twin: Drape.Core.TouchPoint. Touch drag, paper eq. 9 (with the exponent's sign restored): c = min(1, A
- * exp(-r^2 / (2 sigma))), r = screen distance (px) of the vertex from the touch. The vertex's screen position
- * moves by c * motion and is unprojected at its own depth. As in the paper, sigma divides r^2 directly (it is
- * a variance, px^2), and A = 200, sigma = 300 px^2 (the paper's constants, interpreted in pixels: in NDC
- * units they would give the same c everywhere). Drape clamps c to 1 so no vertex outruns the finger: with the
- * defaults the vertices within sqrt(2 sigma ln A) = 56 px follow the finger fully, c = 0.5 at 60 px, 0.01 at
- * 77 px. */
-typedef struct drape_touch {
-    uint32_t struct_size;
-    float position[2]; /**< px, where the finger was at the previous call (the touch point). Range [-1e6,
-                            1e6]. Default (0, 0) */
-    float motion[2]; /**< px, finger motion since then. Range [-1e6, 1e6]. Default (0, 0) */
-    float amplitude; /**< A. Range (0, 1e6]. Default 200 */
-    float sigma; /**< px^2. Range (0, 1e12]. Default 300 */
-} drape_touch;
-/* GENERATED END drape_touch */
-
-/** Fills struct_size and the defaults (position, motion 0; A 200; sigma 300). */
-DRAPE_API drape_status drape_touch_default(drape_touch* out_touch);
-/** Drags the cloth with `count` touches (0..16) seen through `view`; the displacement is spread
- *  over the next step (the dragged vertices get the finger's velocity). Several calls before a
- *  step add up. Kinematic (pinned, grabbed) vertices are not moved. Wakes the cloth if anything moves. */
-DRAPE_API drape_status drape_cloth_drag(drape_cloth* cloth, const drape_view* view, const drape_touch* touches,
-                                        uint32_t count);
-/** Pick-and-hold: grabs the free vertex nearest (on screen) to `position` (px) within
- *  `pick_radius` px and holds it as a moving pin at its current depth. `touch_id` names the grab
- *  (at most 16 at once; grabbing with a live id releases the old one first). *out_vertex = the
- *  caller vertex, or UINT32_MAX if none was within the radius (still DRAPE_OK). */
-DRAPE_API drape_status drape_cloth_grab(drape_cloth* cloth, const drape_view* view, uint32_t touch_id,
-                                        const float position[2], float pick_radius, uint32_t* out_vertex);
-/** Moves a grabbed vertex under the finger at `position` (px), at the depth it was grabbed at;
- *  the move is spread over the next step like a pin move. INVALID_ARGUMENT if touch_id holds nothing. */
-DRAPE_API drape_status drape_cloth_grab_move(drape_cloth* cloth, const drape_view* view, uint32_t touch_id,
-                                             const float position[2]);
-/** Releases a grab (the vertex gets its inverse mass back and keeps its velocity). Unknown id: OK. */
-DRAPE_API drape_status drape_cloth_grab_release(drape_cloth* cloth, uint32_t touch_id);
-
-/* GENERATED BEGIN drape_owner */
-/* C# twin: Drape.Core.Owner. The transform of the object the cloth hangs on (character, flag pole), in
- * simulation space. Pinned vertices move rigidly with it. Free vertices are carried along by (1 - inertia) of
- * the owner's motion without gaining velocity: inertia 0 simulates the cloth fully in the owner's local space
- * (owner motion has no inertial effect), 1 fully in world space (the cloth lags and swings as the pins drag
- * it). A jump of the owner's position by more than teleport_distance moves the whole cloth rigidly with it
- * (shape kept, velocities zeroed) instead of stretching it across the world. */
-typedef struct drape_owner {
-    uint32_t struct_size;
-    float position[3]; /**< m. Range [-1e6, 1e6]. Default (0, 0, 0) */
-    float rotation[4]; /**< unit quaternion x, y, z, w. Default (0, 0, 0, 1) */
-    float linear_inertia; /**< Range [0, 1]. Default 1 */
-    float angular_inertia; /**< Range [0, 1]. Default 1 */
-    float teleport_distance; /**< m. Range (0, 1e6]. Default 1 */
-} drape_owner;
-/* GENERATED END drape_owner */
-
-/** Fills struct_size and defaults (identity transform, inertia 1, teleport_distance 1 m). */
-DRAPE_API drape_status drape_owner_default(drape_owner* out_owner);
-/** Sets the owner transform for this frame. The first call only records it; later calls move
- *  pins and cloth by the change since the previous call (see drape_owner). Wakes on change. */
-DRAPE_API drape_status drape_cloth_set_owner(drape_cloth* cloth, const drape_owner* owner);
-
-/* ================================ 7. GPU (DRAPE_BACKEND_GLES) ================================= */
-/* A GLES cloth keeps its state in GL buffers of the context that was current when it was created.
- * Immediate use (tests, samples, apps owning the context): create, step, read and destroy with
- * that context current on the calling thread; without one, creation fails with
- * DRAPE_ERROR_BACKEND_UNAVAILABLE and steps with DRAPE_ERROR_BACKEND_UNAVAILABLE.
- * Unity (no context on the main thread, an OpenGLES3 device seen by UnityPluginLoad): calls on the
- * main thread only record; the GL work (creation, queued steps and edits, output, releasing
- * destroyed cloths) runs on the render thread when the event from drape_unity_render_event fires.
- * Errors met there are returned by the cloth's next drape_cloth_step.
- * Steps never read back. drape_cloth_read and drape_cloth_get_stats read the state back (immediate
- * use only: with the context current) and then report what a CPU cloth would: positions, normals,
- * energies, and max/rms strain and non_finite from that read-back state; step_ms is the time to
- * record the GL commands; there is no divergence check or rollback on the GPU (unstable_steps
- * stays 0). Setters that need the current positions (inverse masses, new pins, releasing pins,
- * velocities) read back too. */
-
-/** Output target of a GLES cloth: after every step (and now) the GPU writes positions and/or
- *  normals of every caller vertex into GL buffer `gl_buffer` (Unity: Mesh.GetNativeVertexBufferPtr)
- *  at gl_buffer + i*stride + offset; bytes of the stride outside position/normal are kept.
- *  The buffer must hold vertex_count*stride bytes (checked with glGetBufferParameteriv, also before
- *  each step); stride <= 256. gl_buffer = 0 (layout may be NULL) stops writing. */
-DRAPE_API drape_status drape_cloth_set_output_buffer(drape_cloth* cloth, uint32_t gl_buffer,
-                                                     const drape_vertex_layout* layout);
-/** Copies the GPU state of a GLES cloth to its CPU copy (immediate: now; Unity: at the next render
- *  event). Not needed for drape_cloth_read in immediate use. No-op for CPU cloths. */
-DRAPE_API drape_status drape_cloth_readback(drape_cloth* cloth);
-
-/* ================================ 8. Unity ==================================================== */
-/* UnityPluginLoad / UnityPluginUnload are exported too (Unity's native plug-in interface). */
-
-/** The render-event callback for GL.IssuePluginEvent / CommandBuffer.IssuePluginEvent and the
- *  event id to pass (reserved from Unity). The event runs every GLES cloth's recorded GL work.
- *  NULL_POINTER (with a message) if either out-pointer is NULL. */
-DRAPE_API drape_status drape_unity_render_event(void** out_callback, int32_t* out_event_id);
-
-#ifdef __cplusplus
-}
-#endif
-
-#endif /* DRAPE_DRAPE_H */
 #line 26 "plugin-native/src/backend/cpu/collide.h"
 
 namespace drape::kernels {
@@ -29750,67 +30203,9 @@ struct Interaction {
 };
 
 }  // namespace drape
-#line 15 "plugin-native/src/core/cloth.h"
+#line 18 "plugin-native/src/core/cloth.h"
 // #include "core/params.h"
-#line 1 "plugin-native/src/core/params.h"
-// Per-cloth parameters: validation, defaults, and the per-group constants a (sub)step uses.
-
-
-#include <string>
-
-// #include "drape/drape.h"
-#line 7 "plugin-native/src/core/params.h"
-
-namespace drape {
-
-/// Defaults documented in drape.h (from tools/abi/abi.py).
-drape_params default_params();
-
-/// Empty string when valid; otherwise what is wrong (status in *status).
-std::string validate_params(const drape_params& p, drape_status* status);
-
-/// Substeps used by default for the position-based models ("small steps", Macklin et al. 2019:
-/// at equal cost substeps x iterations, 16 x 1 beat 4 x 4 on every scene of tests/bench:
-/// E2 0.070 vs 0.101 on the two-corner cloth, 0.039 vs 0.147 on the R4 chain).
-constexpr uint32_t kAutoSubstepsPositionBased = 16;
-/// Upper bound on substeps per step, automatic or given (drape.h).
-constexpr uint32_t kMaxSubsteps = DRAPE_MAX_SUBSTEPS;
-constexpr uint32_t kMaxIterations = DRAPE_MAX_ITERATIONS;
-/// Fraction of the explicit stability limit used when MASS_SPRING picks substeps itself.
-constexpr float kStabilitySafety = 0.9f;
-/// Jacobi coupling weight theta (kernels.h jacobi_scale); convergent for theta > 1/2.
-constexpr float kJacobiCoupling = 0.6f;
-/// MASS_SPRING's explicit stability bound for one particle (accuracy.md, "cruder" form, valid in
-/// any pose): w^2 <= 2 w_i sum_j k_ij; with the dashpots' c = 2 w_i sum kd, Verlet needs
-/// h^2 w^2 + 2 h c <= 4, times kStabilitySafety^2. The largest such substep h, s (INFINITY when
-/// nothing bounds it: no active spring or no inverse mass).
-float mass_spring_max_substep(float inverse_mass, float stiffness_sum, float damping, uint32_t active_springs);
-
-/// Substeps a step of dt uses: params.substeps if set; else MASS_SPRING: ceil(dt / h_max)
-/// (h_max from mass_spring_max_substep, the tightest particle), PBD/XPBD:
-/// kAutoSubstepsPositionBased; always in [1, kMaxSubsteps].
-uint32_t substeps_for(const drape_params& p, float h_max, float dt);
-
-struct Topology;
-struct StabilityEstimate {
-    uint32_t substeps;          ///< what a step of dt uses
-    uint32_t stable_substeps;   ///< fewest within the explicit bound (MASS_SPRING), 1 otherwise
-    float max_stable_substep;   ///< s; 0 = no explicit bound
-};
-/// For a cloth with this topology (cooked masses, no pins) and parameters.
-StabilityEstimate estimate_stability(const Topology& topo, const drape_params& p, float dt);
-
-/// A cloth farther than this from its origin (Cloth::origin; any axis, m) is re-centred: local
-/// coordinates stay within a few metres, where float resolution is about 5e-7 m. A cloth created
-/// within it of the caller's origin starts with origin 0 (same arithmetic as simulating in the
-/// caller's space).
-constexpr float kRecentreDistance = 4.0f;
-
-/// Strain beyond which a step counts as diverged ("runaway strain", accuracy.md).
-constexpr float kRunawayStrain = 10.0f;
-
-}  // namespace drape
-#line 16 "plugin-native/src/core/cloth.h"
+#line 19 "plugin-native/src/core/cloth.h"
 // #include "core/self_collision.h"  // issue 5: self-collision
 #line 1 "plugin-native/src/core/self_collision.h"
 // Self-collision state of a cloth (issue 5): the setting and the spatial hash's storage. Owned by
@@ -29866,67 +30261,11 @@ struct SelfCollision {
 };
 
 }  // namespace drape
-#line 17 "plugin-native/src/core/cloth.h"
+#line 20 "plugin-native/src/core/cloth.h"
 // #include "core/topology.h"
-#line 1 "plugin-native/src/core/topology.h"
-// Cooked, immutable description of a cloth: particles, neighbour table, triangles, masses.
-// Cooked once at creation (grid or triangle mesh); never touched by a step.
-
-
-#include <cstdint>
-#include <string>
-#include <vector>
-
-// #include <glm/vec3.hpp>
-#line 10 "plugin-native/src/core/topology.h"
-
+#line 21 "plugin-native/src/core/cloth.h"
 // #include "drape/drape.h"
-#line 12 "plugin-native/src/core/topology.h"
-
-namespace drape {
-
-/// Neighbour table, one row of `slots` entries per particle (the paper's per-vertex spring list).
-/// Row i holds the springs of particle i in [0, count[i]); the rest of the row is padding
-/// (index = i, rest = 0, group = kNoGroup). Every spring appears twice, once in each end's row,
-/// so a per-particle gather (CPU or a GLES vertex shader) sees all of its springs.
-struct NeighbourTable {
-    static constexpr uint8_t kNoGroup = 0xff;
-    uint32_t slots = 0;               ///< row length (12 for a grid, max valence for a mesh)
-    std::vector<uint32_t> index;      ///< particle at the other end
-    std::vector<float> rest;          ///< rest length, m
-    std::vector<uint8_t> group;       ///< drape_group, or kNoGroup for padding
-    std::vector<uint32_t> count;      ///< used slots per particle
-};
-
-struct Topology {
-    uint32_t vertex_count = 0;                ///< caller vertices
-    uint32_t particle_count = 0;              ///< after welding
-    std::vector<uint32_t> vertex_to_particle; ///< caller vertex -> particle
-    std::vector<glm::vec3> rest_position;     ///< per particle, m
-    std::vector<float> mass;                  ///< per particle, kg (area-weighted share)
-    std::vector<uint32_t> triangles;          ///< particle indices, 3 per triangle (for normals)
-    NeighbourTable nbr;
-    uint32_t spring_count[DRAPE_GROUP_COUNT] = {};
-    float extent = 0;                         ///< diagonal of the rest bounding box, m
-};
-
-/// Result of cooking: a status and, on failure, the message for drape_last_error().
-struct CookResult {
-    drape_status status = DRAPE_OK;
-    std::string message;
-};
-
-/// Grid with the paper's 12-spring stencil. Inputs must already be validated.
-Topology cook_grid(const drape_grid_desc& grid, float total_mass);
-
-/// Arbitrary triangle mesh: welds coincident vertices, structural springs on edges, bend springs
-/// between the vertices opposite each interior edge. Validates indices and degenerate triangles.
-CookResult cook_mesh(const drape_mesh_desc& mesh, float total_mass, Topology& out);
-
-}  // namespace drape
-#line 18 "plugin-native/src/core/cloth.h"
-// #include "drape/drape.h"
-#line 19 "plugin-native/src/core/cloth.h"
+#line 22 "plugin-native/src/core/cloth.h"
 
 namespace drape {
 
@@ -29992,6 +30331,8 @@ public:
 
     /// Substeps a step of dt uses with the current parameters.
     uint32_t substeps_for(float dt) const;
+    /// Iterations per substep with the current parameters (0 in drape_params = automatic).
+    uint32_t iterations_for() const;
 
     /// The point the cloth's coordinates are measured from, in the caller's space, m. Every
     /// position held by the cloth is relative to it (float precision does not depend on where the
@@ -30028,6 +30369,21 @@ protected:
     float h_prev_ = 1.0f;   ///< previous substep; velocity = disp / h_prev
     bool fresh_ = true;     ///< next substep is the first since positions/velocities were set
     std::vector<float> lambda_;
+    // IMPLICIT model (Cloth::implicit_substep): the substep's inertial target, and the prefactored
+    // matrix over the free particles with the substep it was built for (0: rebuild).
+    std::vector<Particle> target_;
+    struct ImplicitSolve {
+        float h = 0;
+        std::vector<float> key;       ///< stiffness, damping and inverse masses it was built from
+        std::vector<uint32_t> free;   ///< particle of each free row, in particle order
+        std::vector<uint32_t> perm;   ///< factor row of free particle f
+        Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> solver;  // AMD ordering
+        Eigen::Matrix<double, Eigen::Dynamic, 3> rhs;
+    } implicit_;
+    template <class KinematicAt>
+    void implicit_substep(kernels::SubstepContext& c, const KinematicAt& kinematic_at);
+    void factor_implicit(float h);
+    float last_h_ = 0;  ///< substep of the last step, s (0: none yet)
     std::vector<float> slot_coef_;  ///< per-spring Jacobi factor of the current step (kernels.h)
     // Column-major copy of the neighbour table for the constraint iteration (kernels.h).
     std::vector<uint32_t> col_index_;
@@ -30186,6 +30542,17 @@ struct Layout<drape_world_desc> {
         s.struct_size = sizeof s;
         return s;
     }
+    /// DRAPE_OK, or the status and *message of the first problem.
+    static drape_status check(const drape_world_desc& s, std::string* message) {
+        auto fail = [message](drape_status status, std::string text) {
+            *message = std::move(text);
+            return status;
+        };
+        if (!(s.thread_count <= 256u))
+            return fail(DRAPE_ERROR_INVALID_ARGUMENT, "thread_count must be in [0, 256]");
+        (void)fail;
+        return DRAPE_OK;
+    }
 };
 
 template <>
@@ -30199,6 +30566,21 @@ struct Layout<drape_cloth_desc> {
         s.backend = DRAPE_BACKEND_CPU;
         s.total_mass = 1.0f;
         return s;
+    }
+    /// DRAPE_OK, or the status and *message of the first problem.
+    static drape_status check(const drape_cloth_desc& s, std::string* message) {
+        auto fail = [message](drape_status status, std::string text) {
+            *message = std::move(text);
+            return status;
+        };
+        if (s.backend > 2)
+            return fail(DRAPE_ERROR_INVALID_ENUM, "backend " + std::to_string(s.backend) + " is not a drape_backend");
+        if (!std::isfinite(s.total_mass))
+            return fail(DRAPE_ERROR_NOT_FINITE, "total_mass is NaN or infinite");
+        if (!(s.total_mass > 0.0f && s.total_mass <= 1e6f))
+            return fail(DRAPE_ERROR_INVALID_ARGUMENT, "total_mass must be in (0, 1e6] kg");
+        (void)fail;
+        return DRAPE_OK;
     }
 };
 
@@ -30241,7 +30623,6 @@ struct Layout<drape_params> {
         s.damping = 0.05f;
         s.gravity[1] = -9.81f;
         s.air_drag = 0.1f;
-        s.iterations = 1u;
         s.max_stretch = 0.1f;
         return s;
     }
@@ -30251,7 +30632,7 @@ struct Layout<drape_params> {
             *message = std::move(text);
             return status;
         };
-        if (s.model > 2)
+        if (s.model > 3)
             return fail(DRAPE_ERROR_INVALID_ENUM, "model " + std::to_string(s.model) + " is not a drape_model");
         if (!std::isfinite(s.stiffness[0]) || !std::isfinite(s.stiffness[1]) || !std::isfinite(s.stiffness[2]))
             return fail(DRAPE_ERROR_NOT_FINITE, "stiffness is NaN or infinite");
@@ -30277,8 +30658,8 @@ struct Layout<drape_params> {
             return fail(DRAPE_ERROR_INVALID_ARGUMENT, "air_drag must be in [0, 1000] 1/s");
         if (!(s.substeps <= DRAPE_MAX_SUBSTEPS))
             return fail(DRAPE_ERROR_INVALID_ARGUMENT, "substeps must be in [0, " + std::to_string(DRAPE_MAX_SUBSTEPS) + "]");
-        if (!(s.iterations >= 1u && s.iterations <= DRAPE_MAX_ITERATIONS))
-            return fail(DRAPE_ERROR_INVALID_ARGUMENT, "iterations must be in [1, " + std::to_string(DRAPE_MAX_ITERATIONS) + "]");
+        if (!(s.iterations <= DRAPE_MAX_ITERATIONS))
+            return fail(DRAPE_ERROR_INVALID_ARGUMENT, "iterations must be in [0, " + std::to_string(DRAPE_MAX_ITERATIONS) + "]");
         if (!(s.max_stretch >= 0.0f && s.max_stretch <= 100.0f))
             return fail(DRAPE_ERROR_INVALID_ARGUMENT, "max_stretch must be in [0, 100]");
         (void)fail;
@@ -30878,7 +31259,6 @@ HandleTable& handles() {
 // Limits on sizes: far above any game cloth, low enough that sizes cannot overflow.
 constexpr uint32_t kMaxVertices = 1u << 22;
 constexpr float kMaxCoordinate = 1e6f;  // m
-constexpr float kMaxMass = 1e6f;        // kg
 
 #define DRAPE_REQUIRE(cond, status, msg) \
     do {                                 \
@@ -30996,11 +31376,8 @@ drape_status check_cloth(const drape_cloth* c) {
 
 // desc: already through DRAPE_CHECK_STRUCT. need_available: creation needs the backend here.
 drape_status check_cloth_desc(const drape_cloth_desc* desc, bool need_available = true) {
-    DRAPE_REQUIRE(desc->backend <= DRAPE_BACKEND_GLES, DRAPE_ERROR_INVALID_ENUM,
-                  "backend " + std::to_string(desc->backend) + " is not a drape_backend");
-    DRAPE_REQUIRE(std::isfinite(desc->total_mass), DRAPE_ERROR_NOT_FINITE, "total_mass is NaN or infinite");
-    DRAPE_REQUIRE(desc->total_mass > 0 && desc->total_mass <= kMaxMass, DRAPE_ERROR_INVALID_ARGUMENT,
-                  "total_mass must be in (0, 1e6] kg");
+    std::string problem;  // backend enum, total_mass finite and in (0, 1e6] kg (tools/abi/abi.py)
+    if (drape_status s = abi::Layout<drape_cloth_desc>::check(*desc, &problem)) return fail(s, problem);
     if (!need_available) return DRAPE_OK;
     uint32_t available = 0;
     drape_backend_available(desc->backend, &available);
@@ -31217,7 +31594,8 @@ drape_status drape_params_default(drape_params* out_params) {
 drape_status drape_world_create(const drape_world_desc* desc, drape_world** out_world) {
     DRAPE_CHECK_STRUCT(desc, drape_world_desc);
     DRAPE_REQUIRE(out_world != nullptr, DRAPE_ERROR_NULL_POINTER, "out_world is NULL");
-    DRAPE_REQUIRE(desc->thread_count <= 256, DRAPE_ERROR_INVALID_ARGUMENT, "thread_count above 256");
+    std::string problem;  // thread_count in [0, 256] (tools/abi/abi.py)
+    if (drape_status s = abi::Layout<drape_world_desc>::check(*desc, &problem)) return fail(s, problem);
     return guarded([&] {
         uint32_t threads = desc->thread_count;
         if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
@@ -31308,6 +31686,10 @@ drape_status drape_cloth_set_params(drape_cloth* cloth, const drape_params* para
     drape_status status;
     std::string problem = validate_params(*params, &status);
     if (status != DRAPE_OK) return fail(status, problem);
+    DRAPE_REQUIRE(params->model != DRAPE_MODEL_IMPLICIT || as_cloth(cloth)->backend() != DRAPE_BACKEND_GLES,
+                  DRAPE_ERROR_BACKEND_UNAVAILABLE,
+                  "model IMPLICIT runs on the CPU backends only (its sparse Cholesky solve has no GLES form yet); "
+                  "GLES runs MASS_SPRING, PBD and XPBD");
     const drape_params p = *params;
     return guarded([&] { return apply_edit(as_cloth(cloth), Access::NoState, [p](Cloth& c) { c.set_params(p); }); });
 }
@@ -31833,274 +32215,6 @@ drape_status drape_cloth_get_self_collision(const drape_cloth* cloth, drape_self
 #line 11 "plugin-native/src/core/cloth.cpp"
 
 // #include "backend/cpu/kernels.h"
-#line 1 "plugin-native/src/backend/cpu/kernels.h"
-// Per-particle kernels of one substep, each over a range [begin, end) of particles.
-//
-// Every kernel is a gather: particle i reads its own record and its neighbours' records from
-// input buffers and writes only its own record to an output buffer (Jacobi style, the paper's
-// per-vertex formulation). That is what a GLES vertex shader with transform feedback can do, so
-// shaders/ mirrors these functions line by line, and any split of the range over threads gives
-// the same bits.
-//
-// Records are 16 bytes: xyz + w inverse mass (1/kg; 0 = pinned/kinematic). The state of a
-// particle is two records: its position x and its displacement d over the last substep (the
-// velocity times h_prev). Keeping d instead of the previous position matters in float: with many
-// small substeps g h^2 is below half an ulp of a position of a few metres, so x - prev would lose
-// gravity entirely (a stiff mass-spring cloth at y = 10 m would never fall); d keeps it exactly.
-
-
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-
-// #include <glm/geometric.hpp>
-#line 21 "plugin-native/src/backend/cpu/kernels.h"
-// #include <glm/vec3.hpp>
-#line 22 "plugin-native/src/backend/cpu/kernels.h"
-// #include <glm/vec4.hpp>
-#line 23 "plugin-native/src/backend/cpu/kernels.h"
-
-// #include "core/params.h"
-#line 25 "plugin-native/src/backend/cpu/kernels.h"
-// #include "core/topology.h"
-#line 26 "plugin-native/src/backend/cpu/kernels.h"
-
-namespace drape::kernels {
-
-using Particle = glm::vec4;
-
-/// Per-substep constants for each spring group. Derived from drape_params and h.
-struct GroupConstants {
-    float stiffness[DRAPE_GROUP_COUNT];   ///< MASS_SPRING: k, N/m. PBD: fraction per iteration
-    float compliance[DRAPE_GROUP_COUNT];  ///< XPBD: alpha~ = 1/(k h^2); 0 when k is 0 (group off)
-    float damping_ratio[DRAPE_GROUP_COUNT]; ///< XPBD: gamma = alpha~ * (h^2 kd) / h = kd/(k h)
-    bool active[DRAPE_GROUP_COUNT];       ///< stiffness > 0
-};
-
-/// Everything a substep needs, as plain pointers (no ownership).
-struct SubstepContext {
-    const uint32_t* nbr_index;
-    const float* nbr_rest;
-    const uint8_t* nbr_group;
-    const uint32_t* nbr_count;
-    const uint32_t* active_count;  ///< active springs per particle (Jacobi row sums)
-    uint32_t slots;
-    // Column-major copies of the table for the constraint iteration: slot s of particle i at
-    // s * stride + i, so four consecutive particles' slot s are contiguous (kernels_simd.h).
-    uint32_t stride;               ///< particle count
-    const uint32_t* col_index;
-    const float* col_rest;
-    const uint8_t* col_group;
-    float* lambda;                 ///< XPBD multipliers, one per slot, column-major (both ends keep
-                                   ///< equal copies); NULL when there is one iteration per substep
-                                   ///< (they start at 0 and are never read again)
-    GroupConstants groups;
-    glm::vec3 gravity, wind;
-    float air_drag;
-    float damping;                 ///< kd, N*s/m
-    float h;                       ///< substep, s
-    float h_prev;                  ///< previous substep, s (velocity = d / h_prev)
-    float h_ratio;                 ///< h / h_prev: exactly 1 for equal substeps, so steady
-                                   ///< motion is not rescaled by a rounded 1/h each substep
-    float accel_h;                 ///< (h + h_prev_for_accel)/2: h, or h/2 on the first step
-};
-
-inline bool active_slot(const SubstepContext& c, size_t slot) {
-    uint8_t g = c.nbr_group[slot];
-    return g < DRAPE_GROUP_COUNT && c.groups.active[g];
-}
-
-/// Unit vector and length of d; zero vector for a zero-length spring (no direction, no force).
-inline glm::vec3 direction(const glm::vec3& d, float* len) {
-    *len = std::sqrt(glm::dot(d, d));
-    return *len > 0 ? d * (1.0f / *len) : glm::vec3(0.0f);
-}
-
-/// External acceleration: gravity plus linear air drag towards the wind velocity.
-inline glm::vec3 external_accel(const SubstepContext& c, const glm::vec3& v) {
-    return c.gravity + c.air_drag * (c.wind - v);
-}
-
-/// MASS_SPRING (paper eq. 1-3): Hooke force plus a dashpot along each spring, then a Verlet step
-/// d' = d h/h_prev + a h (h + h_prev)/2, x' = x + d' (variable-step Verlet in displacement form;
-/// exact for constant acceleration when the first step uses h/2, see accuracy.md R1).
-inline void mass_spring_step(const SubstepContext& c, const Particle* x, const Particle* d, Particle* x_out,
-                             Particle* d_out, uint32_t begin, uint32_t end) {
-    const float inv_hp = 1.0f / c.h_prev;
-    for (uint32_t i = begin; i < end; ++i) {
-        const glm::vec3 xi(x[i]);
-        const float wi = x[i].w;
-        if (wi == 0.0f) {
-            x_out[i] = x[i];
-            d_out[i] = Particle(0.0f);
-            continue;
-        }
-        const glm::vec3 vi = glm::vec3(d[i]) * inv_hp;
-        glm::vec3 force(0.0f);
-        const size_t row = size_t(i) * c.slots;
-        for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
-            const size_t slot = row + s;
-            if (!active_slot(c, slot)) continue;
-            const uint32_t j = c.nbr_index[slot];
-            const glm::vec3 vj = glm::vec3(d[j]) * inv_hp;
-            float len;
-            const glm::vec3 n = direction(xi - glm::vec3(x[j]), &len);
-            const float k = c.groups.stiffness[c.nbr_group[slot]];
-            force += (-k * (len - c.nbr_rest[slot]) - c.damping * glm::dot(vi - vj, n)) * n;
-        }
-        const glm::vec3 a = wi * force + external_accel(c, vi);
-        const glm::vec3 dn = glm::vec3(d[i]) * c.h_ratio + a * (c.h * c.accel_h);
-        x_out[i] = Particle(xi + dn, wi);
-        d_out[i] = Particle(dn, wi);
-    }
-}
-
-/// PBD / XPBD prediction: the inertial displacement of this substep under external forces,
-/// d' = d h/h_prev + a h (h + h_prev)/2, written as a displacement record; multipliers reset.
-/// Position-based substeps then work on displacements from the substep start, not on absolute
-/// positions, for the same float reason as the state (see the top of this file).
-/// kDashpot (PBD, which has no compliance to carry damping): explicit dashpots along the springs,
-/// kd limited per spring to 1/(h (wi ci + wj cj)) so the explicit update cannot overshoot.
-template <bool kDashpot>
-inline void predict(const SubstepContext& c, const Particle* x, const Particle* d, Particle* out,
-                    uint32_t begin, uint32_t end) {
-    const float inv_hp = 1.0f / c.h_prev;
-    for (uint32_t i = begin; i < end; ++i) {
-        const float wi = x[i].w;
-        glm::vec3 dn(0.0f);
-        if (wi != 0.0f) {
-            const glm::vec3 vi = glm::vec3(d[i]) * inv_hp;
-            glm::vec3 a = external_accel(c, vi);
-            if (kDashpot) {
-                const glm::vec3 xi(x[i]);
-                glm::vec3 force(0.0f);
-                const size_t row = size_t(i) * c.slots;
-                for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
-                    const size_t slot = row + s;
-                    if (!active_slot(c, slot)) continue;
-                    const uint32_t j = c.nbr_index[slot];
-                    const glm::vec3 vj = glm::vec3(d[j]) * inv_hp;
-                    float len;
-                    const glm::vec3 n = direction(xi - glm::vec3(x[j]), &len);
-                    const float limit = 1.0f / (c.h * (wi * float(c.active_count[i]) +
-                                                       x[j].w * float(c.active_count[j])));
-                    force -= std::fmin(c.damping, limit) * glm::dot(vi - vj, n) * n;
-                }
-                a += wi * force;
-            }
-            dn = glm::vec3(d[i]) * c.h_ratio + a * (c.h * c.accel_h);
-        }
-        out[i] = Particle(dn, wi);
-    }
-    if (c.lambda)  // column-major: one contiguous run per slot
-        for (uint32_t s = 0; s < c.slots; ++s)
-            std::fill(c.lambda + size_t(s) * c.stride + begin, c.lambda + size_t(s) * c.stride + end, 0.0f);
-}
-
-/// Jacobi scaling of one constraint's update: 1 / (1 + theta R), R = the constraint's off-diagonal
-/// row sum over its diagonal in J W J^T + alpha~ (with |cos| <= 1, so it holds in any pose).
-/// An uncoupled constraint gets the full update; for theta > 1/2 the scaled Jacobi iteration
-/// converges (2P - A is diagonally dominant).
-inline float jacobi_scale(float wi, float wj, uint32_t ci, uint32_t cj, float diag, float gamma_factor) {
-    const float off = gamma_factor * (wi * float(ci - 1) + wj * float(cj - 1));
-    return 1.0f / (1.0f + kJacobiCoupling * off / diag);
-}
-
-/// Per-spring factor of a Jacobi update, computed once per step (it depends on h, the masses and
-/// the active springs, none of which change between substeps): XPBD's 1/diag and PBD's k/wsum,
-/// each times jacobi_scale; 0 for inactive springs and padding. Column-major like `lambda`;
-/// symmetric in i and j.
-template <bool kXpbd>
-inline void spring_coefficients(const SubstepContext& c, const Particle* x, float* coef, uint32_t begin, uint32_t end) {
-    for (uint32_t i = begin; i < end; ++i) {
-        const float wi = x[i].w;
-        const size_t row = size_t(i) * c.slots;
-        for (uint32_t s = 0; s < c.slots; ++s) {
-            const size_t slot = row + s;
-            const size_t col = size_t(s) * c.stride + i;
-            float& k = coef[col];
-            k = 0.0f;
-            if (s >= c.nbr_count[i] || !active_slot(c, slot) || wi == 0.0f) continue;
-            const uint32_t j = c.nbr_index[slot];
-            const uint8_t g = c.nbr_group[slot];
-            const float wj = x[j].w;
-            const float wsum = wi + wj;
-            if (kXpbd) {
-                const float gamma = c.groups.damping_ratio[g];
-                const float diag = (1.0f + gamma) * wsum + c.groups.compliance[g];
-                k = jacobi_scale(wi, wj, c.active_count[i], c.active_count[j], diag, 1.0f + gamma) / diag;
-            } else {
-                k = c.groups.stiffness[g] * jacobi_scale(wi, wj, c.active_count[i], c.active_count[j], wsum, 1.0f) / wsum;
-            }
-        }
-    }
-}
-
-/// One PBD (paper eq. 7-8, stiffness k per iteration) or XPBD (Macklin 2016 eq. 18 with the
-/// damping term of eq. 26) Jacobi iteration on displacements `disp` from the substep start
-/// `start`; writes displacements to `out` and, with kCommit (the last iteration), also the new
-/// positions start + displacement to `x_out`. `coef` from spring_coefficients (0 for inactive
-/// springs, which then contribute nothing). Symmetric in i and j, so both copies of each lambda
-/// stay equal.
-template <bool kXpbd, bool kCommit>
-inline void constraint_iteration(const SubstepContext& c, const float* coef, const Particle* disp,
-                                 const Particle* start, Particle* out, Particle* x_out, uint32_t begin, uint32_t end) {
-    for (uint32_t i = begin; i < end; ++i) {
-        const float wi = disp[i].w;
-        const glm::vec3 di(disp[i]);
-        const glm::vec3 si(start[i]);
-        glm::vec3 dx(0.0f);
-        if (wi != 0.0f) {
-            const uint32_t count = c.nbr_count[i];
-            for (uint32_t s = 0; s < count; ++s) {
-                const size_t slot = size_t(s) * c.stride + i;
-                const uint32_t j = c.col_index[slot];
-                const glm::vec3 dij = di - glm::vec3(disp[j]);
-                float len;
-                const glm::vec3 n = direction((si - glm::vec3(start[j])) + dij, &len);
-                const float constraint = len - c.col_rest[slot];
-                float dl;
-                if (kXpbd) {
-                    const uint8_t g = c.col_group[slot];
-                    // Without stored multipliers (one iteration per substep) lambda is 0 here:
-                    // -C - 0 is -C exactly, so skipping the term changes no bit.
-                    const float lambda = c.lambda ? c.lambda[slot] : 0.0f;
-                    dl = (-constraint - c.groups.compliance[g] * lambda -
-                          c.groups.damping_ratio[g] * glm::dot(n, dij)) * coef[slot];
-                    if (c.lambda) c.lambda[slot] = lambda + dl;
-                } else {
-                    dl = -constraint * coef[slot];
-                }
-                dx += (wi * dl) * n;
-            }
-        }
-        const glm::vec3 dn = di + dx;
-        out[i] = Particle(dn, wi);
-        if (kCommit) x_out[i] = Particle(si + dn, wi);
-    }
-}
-
-/// Tethers (long-range attachments, Kim, Chentanez and Mueller 2012): particle i may be at most
-/// `length[i]` from the kinematic particle `anchor[i]`; beyond that it is pulled back onto the
-/// sphere, and its displacement takes the same correction (no velocity away from the anchor).
-/// One-sided and local, so it runs after the solve in O(n) and stops the stretch a local solver
-/// cannot remove in few passes on a fine cloth. Particles without an anchor have length < 0.
-inline void tether(const uint32_t* anchor, const float* length, Particle* x, Particle* d, uint32_t begin,
-                   uint32_t end) {
-    for (uint32_t i = begin; i < end; ++i) {
-        const float limit = length[i];
-        if (limit < 0.0f || x[i].w == 0.0f) continue;
-        const glm::vec3 xi(x[i]);
-        float len;
-        const glm::vec3 n = direction(xi - glm::vec3(x[anchor[i]]), &len);
-        if (len <= limit) continue;
-        const glm::vec3 pull = n * (limit - len);
-        x[i] = Particle(xi + pull, x[i].w);
-        d[i] += Particle(pull, 0.0f);
-    }
-}
-
-}  // namespace drape::kernels
 #line 13 "plugin-native/src/core/cloth.cpp"
 // #include "backend/cpu/kernels_simd.h"
 #line 1 "plugin-native/src/backend/cpu/kernels_simd.h"
@@ -32264,6 +32378,7 @@ Cloth::Cloth(World& world, drape_backend backend, Topology topology)
     for (auto& b : buffers_) b.resize(n);
     for (uint32_t i = 0; i < n; ++i) buffers_[cur_][i] = Particle(topo_.rest_position[i], 0.0f);
     lambda_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
+    target_.resize(n);
     slot_coef_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
     const NeighbourTable& nb = topo_.nbr;
     col_index_.resize(nb.index.size());
@@ -32316,6 +32431,24 @@ void Cloth::refresh_derived() {
         h_max = std::min(h_max, mass_spring_max_substep(buffers_[cur_][i].w, ksum, params_.damping, active));
     }
     ms_h_max_ = h_max;
+    // IMPLICIT: refactor now (not in step, which must not allocate) when what the matrix depends
+    // on changed: effective masses (which particles are kinematic, masses), stiffness, damping.
+    if (params_.model == DRAPE_MODEL_IMPLICIT) {
+        std::vector<float>& key = implicit_.key;
+        const size_t size = 4 + size_t(n);
+        bool changed = key.size() != size;
+        key.resize(size);
+        auto set = [&](size_t k, float v) {
+            if (key[k] != v) changed = true;
+            key[k] = v;
+        };
+        for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) set(size_t(g), params_.stiffness[g]);
+        set(3, params_.damping);
+        for (uint32_t i = 0; i < n; ++i) set(4 + i, buffers_[cur_][i].w);
+        if (changed || implicit_.h == 0) factor_implicit(last_h_ > 0 ? last_h_ : kDefaultH / float(kAutoSubstepsImplicit));
+    } else {
+        implicit_.key.clear();
+    }
     if (kinematic_ != tethered_kinematic_) rebuild_tethers();
     for (uint32_t i = 0; i < n; ++i)
         tether_length_[i] = tether_rest_[i] < 0 ? -1.0f : tether_rest_[i] * (1.0f + params_.max_stretch);
@@ -32423,6 +32556,90 @@ void Cloth::set_velocities(const float* xyz) {
 
 uint32_t Cloth::substeps_for(float dt) const { return drape::substeps_for(params_, ms_h_max_, dt); }
 
+uint32_t Cloth::iterations_for() const {
+    if (params_.iterations > 0) return params_.iterations;
+    return params_.model == DRAPE_MODEL_IMPLICIT ? kAutoIterationsImplicit : 1;
+}
+
+template <class KinematicAt>
+void Cloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& kinematic_at) {
+    // Target y into target_, inertia as the first iterate into spare2; then each iteration
+    // d += A^-1 r, r = kernels::implicit_residual, A = M/h^2 + sum_springs (k + kd/h) (e_i - e_j)
+    // (e_i - e_j)^T over the free particles: Projective Dynamics' constant matrix (Bouaziz et al.
+    // 2014), prefactored, as the preconditioner of the exact force residual. A bounds the spring
+    // Hessian (k n n^T + k (1 - L/l)(I - n n^T) <= k I), so every iteration lowers Phi; it solves
+    // the linear part (rigid motion, stretch of a hanging cloth) in one iteration, which local
+    // Jacobi-type sweeps need O(n) iterations for; and the fixed point is the exact equilibrium
+    // whatever A is (kernels::implicit_residual), so A is refactored only when it drifts far.
+    Particle* cur = buffers_[cur_].data();
+    Particle* disp = buffers_[disp_].data();
+    Particle* target = target_.data();
+    Particle* iterate = buffers_[spare2_].data();
+    Particle* residual = buffers_[spare_].data();
+    for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_predict(c, cur, disp, target, iterate, b, e); });
+    for (uint32_t k : kinematic_) target[k] = iterate[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
+    if (!(std::fabs(implicit_.h / c.h - 1.0f) < kImplicitRefactor)) factor_implicit(c.h);  // dt changed a lot
+    const uint32_t iterations = iterations_for();
+    const uint32_t free = uint32_t(implicit_.free.size());
+    for (uint32_t it = 0; it < iterations; ++it) {
+        for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_residual(c, iterate, target, cur, residual, b, e); });
+        for (uint32_t f = 0; f < free; ++f)
+            for (int a = 0; a < 3; ++a) implicit_.rhs(implicit_.perm[f], a) = residual[implicit_.free[f]][a];
+        implicit_.solver.matrixL().solveInPlace(implicit_.rhs);
+        implicit_.solver.matrixU().solveInPlace(implicit_.rhs);
+        for (uint32_t f = 0; f < free; ++f) {
+            Particle& d = iterate[implicit_.free[f]];
+            const uint32_t row = implicit_.perm[f];
+            d += Particle(float(implicit_.rhs(row, 0)), float(implicit_.rhs(row, 1)), float(implicit_.rhs(row, 2)), 0.0f);
+        }
+    }
+    // Commit: positions start + d into the old displacement buffer, d becomes the state.
+    for_particles([&](uint32_t b, uint32_t e) {
+        for (uint32_t i = b; i < e; ++i) disp[i] = Particle(glm::vec3(cur[i]) + glm::vec3(iterate[i]), cur[i].w);
+    });
+    const int old_cur = cur_;
+    cur_ = disp_;
+    disp_ = spare2_;
+    spare2_ = old_cur;
+}
+
+void Cloth::factor_implicit(float h) {
+    // Rows of the free particles; kinematic ones enter only through the residual.
+    const uint32_t n = topo_.particle_count;
+    const NeighbourTable& nb = topo_.nbr;
+    std::vector<int> row(n, -1);
+    implicit_.free.clear();
+    for (uint32_t i = 0; i < n; ++i)
+        if (buffers_[cur_][i].w != 0.0f) {
+            row[i] = int(implicit_.free.size());
+            implicit_.free.push_back(i);
+        }
+    const double kd_h = double(params_.damping) / h;
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(implicit_.free.size() * (nb.slots + 1));
+    for (uint32_t i : implicit_.free) {
+        double diag = 1.0 / (double(buffers_[cur_][i].w) * h * h);
+        for (uint32_t s = 0; s < nb.count[i]; ++s) {
+            const uint8_t g = nb.group[size_t(i) * nb.slots + s];
+            if (g >= DRAPE_GROUP_COUNT || !(params_.stiffness[g] > 0)) continue;
+            const double k = params_.stiffness[g] + kd_h;
+            diag += k;
+            const int j = row[nb.index[size_t(i) * nb.slots + s]];
+            if (j >= 0) entries.emplace_back(row[i], j, -k);
+        }
+        entries.emplace_back(row[i], row[i], diag);
+    }
+    const int m = int(implicit_.free.size());
+    Eigen::SparseMatrix<double> a(m, m);
+    a.setFromTriplets(entries.begin(), entries.end());
+    implicit_.solver.compute(a);
+    // rhs lives in the factor's (permuted) row order: free particle f is row perm[f].
+    implicit_.perm.resize(m);
+    for (int f = 0; f < m; ++f) implicit_.perm[f] = uint32_t(implicit_.solver.permutationP().indices()[f]);
+    implicit_.rhs.resize(m, 3);
+    implicit_.h = h;
+}
+
 template <class Fn>
 void Cloth::for_particles(Fn&& fn) {
     if (backend_ == DRAPE_BACKEND_CPU_THREADED)
@@ -32460,6 +32677,7 @@ Result Cloth::step(float dt) {
     const NeighbourTable& nb = topo_.nbr;
     const uint32_t substeps = substeps_for(dt);
     const float h = dt / float(substeps);
+    last_h_ = h;
     const drape_model model = drape_model(params_.model);
 
     std::memcpy(backup_cur_.data(), buffers_[cur_].data(), n * sizeof(Particle));
@@ -32479,7 +32697,8 @@ Result Cloth::step(float dt) {
     c.col_index = col_index_.data();
     c.col_rest = col_rest_.data();
     c.col_group = col_group_.data();
-    c.lambda = model == DRAPE_MODEL_XPBD && params_.iterations > 1 ? lambda_.data() : nullptr;
+    const uint32_t iterations = iterations_for();
+    c.lambda = model == DRAPE_MODEL_XPBD && iterations > 1 ? lambda_.data() : nullptr;
     for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) {
         const float k = params_.stiffness[g];
         c.groups.stiffness[g] = k;
@@ -32514,7 +32733,9 @@ Result Cloth::step(float dt) {
         auto kinematic_at = [&](uint32_t k) {
             return kinematic_start_[k] + (kinematic_target_[k] - kinematic_start_[k]) * along;
         };
-        if (model == DRAPE_MODEL_MASS_SPRING) {
+        if (model == DRAPE_MODEL_IMPLICIT) {
+            implicit_substep(c, kinematic_at);
+        } else if (model == DRAPE_MODEL_MASS_SPRING) {
             for_particles([&](uint32_t b, uint32_t e) { kernels::mass_spring_step(c, cur, disp, spare, spare2, b, e); });
             for (uint32_t k : kinematic_) {
                 spare[k] = Particle(kinematic_at(k), 0.0f);
@@ -32533,8 +32754,8 @@ Result Cloth::step(float dt) {
             int in = spare_, out = spare2_;
             const bool xpbd = model == DRAPE_MODEL_XPBD;
             const float* coef = slot_coef_.data();
-            for (uint32_t it = 0; it < params_.iterations; ++it) {
-                const bool last = it + 1 == params_.iterations;
+            for (uint32_t it = 0; it < iterations; ++it) {
+                const bool last = it + 1 == iterations;
                 Particle* src = buffers_[in].data();
                 Particle* dst = buffers_[out].data();
                 for_particles([&](uint32_t b, uint32_t e) {
@@ -32608,7 +32829,7 @@ Result Cloth::step(float dt) {
     }
 
     stats_.substeps = substeps;
-    stats_.iterations = model == DRAPE_MODEL_MASS_SPRING ? 1 : params_.iterations;
+    stats_.iterations = model == DRAPE_MODEL_MASS_SPRING ? 1 : iterations;
     stats_.step_ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - t0).count();
     const bool runaway = !(total.max_strain_all <= kRunawayStrain);
     stats_.non_finite = total.finite ? 0 : 1;
@@ -32764,6 +32985,7 @@ float mass_spring_max_substep(float inverse_mass, float stiffness_sum, float dam
 
 uint32_t substeps_for(const drape_params& p, float h_max, float dt) {
     if (p.substeps > 0) return p.substeps;
+    if (p.model == DRAPE_MODEL_IMPLICIT) return kAutoSubstepsImplicit;
     if (p.model != DRAPE_MODEL_MASS_SPRING) return kAutoSubstepsPositionBased;
     const float s = std::ceil(dt / h_max);
     return s < 1 ? 1u : s > float(kMaxSubsteps) ? kMaxSubsteps : uint32_t(s);
@@ -36644,8 +36866,8 @@ Result GlesCloth::gpu_step(float dt) {
             // also writes positions, into the displacement buffer (free after predict).
             run_pass(*p_first, cur, disp, spare, -1, false, along, sub);
             int in = spare, out = spare2;
-            for (uint32_t it = 0; it < params_.iterations; ++it) {
-                if (it + 1 == params_.iterations)
+            for (uint32_t it = 0; it < iterations_for(); ++it) {
+                if (it + 1 == iterations_for())
                     run_pass(*p_commit, in, cur, disp, out, true, along, sub);  // x -> disp, d -> out
                 else
                     run_pass(*p_constraint, in, cur, out, -1, true, along, sub);
@@ -36679,7 +36901,7 @@ Result GlesCloth::gpu_step(float dt) {
     interaction_end_step(dt, false);  // colliders advance, drag consumed (sleep is CPU-only)
     Result r = write_output();
     stats_.substeps = substeps;
-    stats_.iterations = model == DRAPE_MODEL_MASS_SPRING ? 1 : params_.iterations;
+    stats_.iterations = model == DRAPE_MODEL_MASS_SPRING ? 1 : iterations_for();
     stats_.step_ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (!r.ok()) return r;
     return gl_error("GLES step");
