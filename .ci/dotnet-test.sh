@@ -28,6 +28,9 @@ for unity in 2022.3 6000.5; do
   dotnet build tests/dotnet/CompileCheck/Drape.Samples.CompileCheck.csproj -nologo -v quiet -p:UnityVersion=$unity
 done
 
+# The native library name P/Invokes use per Unity platform ("__Internal" where IL2CPP compiles the sources).
+bash tests/dotnet/library-name.sh
+
 dotnet test tests/dotnet/Drape.Core.Tests/Drape.Core.Tests.csproj -nologo -v quiet
 # The MonoBehaviours run against the stand-in (legacy input, Unity 2022.3 defines).
 dotnet test tests/dotnet/Drape.Runtime.Tests/Drape.Runtime.Tests.csproj -nologo -v quiet

@@ -312,8 +312,8 @@ namespace Drape
         /// <summary>The native cloth, or null while disabled.</summary>
         public NativeCloth NativeCloth => _cloth;
 
-        /// <summary>Statistics of the last step (GPU backend: StepMs is the main thread's recording time;
-        /// the strain and energy fields stay 0 because the GPU state is not read back).</summary>
+        /// <summary>Statistics of the last step (GPU backend: StepMs is the main thread's recording time per
+        /// step, Substeps the setting (0 = automatic); strain and energy stay 0: the GPU state is not read back).</summary>
         public Stats LastStats => _lastStats;
 
         /// <summary>Vertices of the simulated mesh (0 while disabled).</summary>
@@ -594,11 +594,22 @@ namespace Drape
                     PushColliders();
 
                     bool wasAsleep = _lastStats.Sleeping != 0;
-                    if (gpu || !interpolate)
+                    if (gpu)
+                    {
+                        // drape_cloth_get_stats would read the GPU state back (and needs the render
+                        // thread's context): report the main thread's recording time instead.
+                        long t0 = System.Diagnostics.Stopwatch.GetTimestamp();
+                        for (int i = 0; i < steps; ++i) _cloth.Step(dt);
+                        long t1 = System.Diagnostics.Stopwatch.GetTimestamp();
+                        _lastStats.StepMs = (float)((t1 - t0) * 1000.0 / System.Diagnostics.Stopwatch.Frequency / steps);
+                        _lastStats.Substeps = (uint)Mathf.Max(0, _substeps);
+                        _lastStats.Iterations = (uint)Mathf.Max(1, _iterations);
+                        return; // the GPU writes the mesh's vertex buffer at the render event; nothing to read back
+                    }
+                    if (!interpolate)
                     {
                         for (int i = 0; i < steps; ++i) _cloth.Step(dt);
                         _lastStats = _cloth.GetStats();
-                        if (gpu) return; // the GPU wrote the mesh's vertex buffer; nothing to read back
                         if (wasAsleep && _lastStats.Sleeping != 0) return; // nothing moved: the mesh is current
                         ReadState(_vertices);
                         ShowVertices();

@@ -1,6 +1,12 @@
 // Every P/Invoke of Drape in one place. Keep in sync with plugin-native/include/drape/drape.h.
-// The library is "drape" (libdrape.so / drape.dll / libdrape.dylib) everywhere but on platforms
-// that link plug-ins statically (iOS, tvOS, WebGL), where it is "__Internal".
+// The library name, chosen here only:
+//  - "__Internal" where IL2CPP compiles the native sources (unity-package/Plugins/Source, enabled for
+//    Android and iOS in its .meta) into the player: iOS players, and Android players built with
+//    IL2CPP unless the project defines DRAPE_ANDROID_PREBUILT (then the prebuilt arm64 .so is used
+//    and the sources are excluded by their defineConstraints);
+//  - "drape" everywhere else (libdrape.so / drape.dll / libdrape.dylib): the Editor, desktop
+//    players, Android with Mono or DRAPE_ANDROID_PREBUILT. tvOS and WebGL compile no Drape sources,
+//    so a call there fails with DllNotFoundException rather than breaking the player's link.
 using System;
 using System.Runtime.InteropServices;
 
@@ -8,7 +14,7 @@ namespace Drape.Core
 {
     internal static class NativeMethods
     {
-#if (UNITY_IOS || UNITY_TVOS || UNITY_WEBGL) && !UNITY_EDITOR
+#if !UNITY_EDITOR && (UNITY_IOS || (UNITY_ANDROID && ENABLE_IL2CPP && !DRAPE_ANDROID_PREBUILT))
         internal const string Library = "__Internal";
 #else
         internal const string Library = "drape";
