@@ -101,7 +101,7 @@ namespace Drape
         /// pins and the owner before the cloth steps in LateUpdate.</summary>
         public const int ExecutionOrder = 1000;
 
-        /// <summary>Stiffness limits per model: mass-spring and XPBD in N/m per spring,
+        /// <summary>Stiffness limits per model: mass-spring, XPBD and implicit in N/m per spring,
         /// PBD a fraction per iteration.</summary>
         public static float MaxStiffness(Model model) => model == Model.Pbd ? 1f : 100000f;
 
@@ -124,13 +124,14 @@ namespace Drape
         [SerializeField, FormerlySerializedAs("Backend")] private DrapeBackendChoice _backend = DrapeBackendChoice.Auto;
         [Tooltip("XPBD: accurate, stiffness in N/m, independent of step and iterations (default). " +
                  "PBD: the paper's position-based model, stiffness is a fraction per iteration (0..1). " +
-                 "Mass-spring: the paper's explicit springs; needs substeps when stiff.")]
+                 "Mass-spring: the paper's explicit springs; needs substeps when stiff. " +
+                 "Implicit: implicit Euler on the same springs (N/m), stable at any stiffness (CPU).")]
         [SerializeField, FormerlySerializedAs("Model")] private Model _model = Model.Xpbd;
-        [Tooltip("Mass-spring and XPBD: stretch springs (grid neighbours, mesh edges), N/m per spring.")]
+        [Tooltip("Mass-spring, XPBD and implicit: stretch springs (grid neighbours, mesh edges), N/m per spring.")]
         [SerializeField, FormerlySerializedAs("StructuralStiffness")] private float _structuralStiffness = 2000f;
-        [Tooltip("Mass-spring and XPBD: shear springs (grid diagonals), N/m per spring.")]
+        [Tooltip("Mass-spring, XPBD and implicit: shear springs (grid diagonals), N/m per spring.")]
         [SerializeField, FormerlySerializedAs("ShearStiffness")] private float _shearStiffness = 1000f;
-        [Tooltip("Mass-spring and XPBD: bend springs (two apart / across an edge), N/m per spring.")]
+        [Tooltip("Mass-spring, XPBD and implicit: bend springs (two apart / across an edge), N/m per spring.")]
         [SerializeField, FormerlySerializedAs("BendStiffness")] private float _bendStiffness = 200f;
         [Tooltip("PBD: stiffness per group (structural, shear, bend) as a fraction per iteration, 0..1.")]
         [SerializeField] private Vector3 _pbdStiffness = new Vector3(1f, 0.8f, 0.3f);
@@ -148,8 +149,9 @@ namespace Drape
         [SerializeField, FormerlySerializedAs("AirDrag"), Range(0f, 10f)] private float _airDrag = 0.1f;
         [Tooltip("Substeps per step. 0 = automatic (mass-spring: from the stability bound; PBD/XPBD: 16).")]
         [SerializeField, FormerlySerializedAs("Substeps"), Range(0, 64)] private int _substeps = 0;
-        [Tooltip("Solver iterations per substep (PBD, XPBD). More substeps beat more iterations at equal cost.")]
-        [SerializeField, FormerlySerializedAs("Iterations"), Range(1, 32)] private int _iterations = 1;
+        [Tooltip("Solver iterations per substep (PBD, XPBD, implicit). 0 = automatic (implicit: 4; PBD, XPBD: 1). " +
+                 "More substeps beat more iterations at equal cost.")]
+        [SerializeField, FormerlySerializedAs("Iterations"), Range(0, 32)] private int _iterations = 0;
         [Tooltip("Tethers: no vertex gets further than (1 + this) times its rest distance along the cloth from " +
                  "the nearest pin. Stops fine cloth from stretching like rubber. 0 = off.")]
         [SerializeField, FormerlySerializedAs("MaxStretch"), Range(0f, 1f)] private float _maxStretch = 0.1f;
@@ -226,7 +228,7 @@ namespace Drape
         public Vector3 Wind { get => _wind; set => SetParams(ref _wind, value); }
         public float AirDrag { get => _airDrag; set => SetParams(ref _airDrag, Mathf.Clamp(value, 0f, 10f)); }
         public int Substeps { get => _substeps; set => SetParams(ref _substeps, Mathf.Clamp(value, 0, 64)); }
-        public int Iterations { get => _iterations; set => SetParams(ref _iterations, Mathf.Clamp(value, 1, 32)); }
+        public int Iterations { get => _iterations; set => SetParams(ref _iterations, Mathf.Clamp(value, 0, 32)); }
         public float MaxStretch { get => _maxStretch; set => SetParams(ref _maxStretch, Mathf.Clamp(value, 0f, 1f)); }
 
         public DrapePinMode PinMode { get => _pinMode; set => SetPins(ref _pinMode, value); }
@@ -603,7 +605,7 @@ namespace Drape
                         long t1 = System.Diagnostics.Stopwatch.GetTimestamp();
                         _lastStats.StepMs = (float)((t1 - t0) * 1000.0 / System.Diagnostics.Stopwatch.Frequency / steps);
                         _lastStats.Substeps = (uint)Mathf.Max(0, _substeps);
-                        _lastStats.Iterations = (uint)Mathf.Max(1, _iterations);
+                        _lastStats.Iterations = (uint)Mathf.Max(0, _iterations);
                         return; // the GPU writes the mesh's vertex buffer at the render event; nothing to read back
                     }
                     if (!interpolate)
@@ -1096,7 +1098,7 @@ namespace Drape
             p.Wind = new Float3(w.x, w.y, w.z);
             p.AirDrag = _airDrag;
             p.Substeps = (uint)Mathf.Max(0, _substeps);
-            p.Iterations = (uint)Mathf.Max(1, _iterations);
+            p.Iterations = (uint)Mathf.Max(0, _iterations);
             p.MaxStretch = Mathf.Max(0f, _maxStretch);
             _cloth.SetParams(p);
         }

@@ -93,7 +93,8 @@ namespace Drape
         }
 
         public static string ModelName(Model m) =>
-            m == Model.Xpbd ? "XPBD" : m == Model.Pbd ? "PBD" : m == Model.MassSpring ? "mass-spring" : "?";
+            m == Model.Xpbd ? "XPBD" : m == Model.Pbd ? "PBD" : m == Model.MassSpring ? "mass-spring" :
+            m == Model.Implicit ? "implicit" : "?";
 
         public static string BackendName(Backend b) =>
             b == Backend.Gles ? "GPU (GLES)" : b == Backend.CpuThreaded ? "CPU threaded" : b == Backend.Cpu ? "CPU" : "?";

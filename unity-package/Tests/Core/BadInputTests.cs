@@ -132,7 +132,7 @@ namespace Drape.Tests
             bad.Damping = float.NaN;
             Fails(() => _cloth.SetParams(bad), Status.ErrorNotFinite);
             bad = good;
-            bad.Iterations = 0;
+            bad.Iterations = 1001; // above DRAPE_MAX_ITERATIONS (1000) (0 means automatic and is accepted)
             Fails(() => _cloth.SetParams(bad), Status.ErrorInvalidArgument);
             bad = good;
             bad.Model = (Model)7;

@@ -21,7 +21,7 @@ namespace Drape.Tests
             Assert.That(p.Wind, Is.EqualTo(new Float3(0f, 0f, 0f)));
             Assert.That(p.AirDrag, Is.EqualTo(0.1f));
             Assert.That(p.Substeps, Is.EqualTo(0u));
-            Assert.That(p.Iterations, Is.EqualTo(1u));
+            Assert.That(p.Iterations, Is.EqualTo(0u)); // automatic (drape.h: per model)
             Assert.That(p.MaxStretch, Is.EqualTo(0.1f).Within(1e-7f));
         }
 
