@@ -5,7 +5,8 @@
 #   check  fail if the committed file is stale; compile it for iOS's configuration (no GLES);
 #          check that libdrape.so (release) links against no GL library
 #   arm64  compile the committed file as IL2CPP does for Android arm64 (clang, C++17, -Os,
-#          -fPIC, hidden visibility, exceptions on; -fno-rtti on top) into libdrape.so linked with
+#          -fPIC, hidden visibility, exceptions on; -fno-rtti on top; warnings off: Eigen's are
+#          many once it is no system header) into libdrape.so linked with
 #          --no-undefined, compare its exports with the CMake-built library, then run the arm64
 #          native suite (test binaries of the arm64 preset) against it under qemu-user
 # Usage: bash .ci/unity-source.sh [sync|check|arm64]...   (no argument: check arm64)
@@ -39,7 +40,7 @@ run_check() {
     return 1
   fi
   # iOS: the same file without the GLES backend (it is on for __ANDROID__ only).
-  g++ "${il2cpp_flags[@]}" -fno-rtti -fsyntax-only "$out"
+  g++ "${il2cpp_flags[@]}" -fno-rtti -w -fsyntax-only "$out"
   # libdrape.so: GL ES and EGL come from dlopen at run time, never from the link.
   local lib=build/release/plugin-native/libdrape.so
   cmake --build --preset release -j "$(nproc)" --target drape >/dev/null
@@ -59,7 +60,7 @@ run_arm64() {
   local cxx=(clang++-14 --target=aarch64-linux-gnu)
   # The Android configuration (GLES backend compiled in, as __ANDROID__ turns it on), linked like
   # libil2cpp.so: every symbol resolved (no GL library on the link line).
-  "${cxx[@]}" "${il2cpp_flags[@]}" -fno-rtti -DDRAPE_WITH_GLES=1 -isystem "$dir/gl-headers" \
+  "${cxx[@]}" "${il2cpp_flags[@]}" -fno-rtti -w -DDRAPE_WITH_GLES=1 -isystem "$dir/gl-headers" \
     -c "$out" -o "$dir/Drape.o"
   "${cxx[@]}" -shared -o "$dir/libdrape.so" "$dir/Drape.o" -Wl,--no-undefined -Wl,-z,defs -Wl,--gc-sections -pthread -ldl
   if readelf -d "$dir/libdrape.so" | grep -E 'NEEDED.*(GLES|EGL|libGL)'; then
