@@ -1,0 +1,216 @@
+// R13 (accuracy.md): stretch-dominated rest states against the double-precision Newton
+// equilibrium of the same spring network (tests/bench/reference.h: same stencil, rest lengths,
+// masses and pins). A sheet pinned along two opposite edges and a curtain pinned along its top
+// row sag by as much as their springs stretch, so a solver that is effectively softer than its
+// springs shows it here (a cloth hanging from two corners sags mostly by geometry and hides it).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+#include "../bench/reference.h"
+#include "drape_test_util.h"
+
+namespace {
+using namespace drape_test;
+
+enum class Scene { Sheet, Curtain, TwoCorners };
+
+struct RestScene {
+    Scene scene;
+    uint32_t n;             ///< n x n vertices, 1 m x 1 m
+    float stiffness_scale;  ///< times the default 2000 / 1000 / 200 N/m
+    float heavy = 1;        ///< mass of the heaviest vertex over the others' (bottom middle / centre)
+    float mass = 0.5f;      ///< kg, the cloth without the heavy vertex's extra
+    uint32_t substeps = 0;  ///< 0: the default budget
+    uint32_t iterations = 0;
+};
+
+bool pinned(const RestScene& s, uint32_t c, uint32_t r) {
+    if (s.scene == Scene::Sheet) return c == 0 || c == s.n - 1;
+    if (s.scene == Scene::Curtain) return r == 0;
+    return r == 0 && (c == 0 || c == s.n - 1);
+}
+
+struct RestSetup {
+    WorldPtr world;
+    drape_cloth* cloth = nullptr;
+    std::vector<double> rest, mass;  ///< reference input: rest positions, masses (0 = pinned)
+    std::vector<bench::RefSpring> springs;
+};
+
+/// The cloth (uniform masses set explicitly, pins as inverse mass 0) and the reference's input.
+RestSetup make_scene(const RestScene& s, drape_model model, drape_backend backend) {
+    RestSetup out;
+    out.world = make_world(2);
+    drape_grid_desc g = grid_desc(s.n, s.n, 1, 1);  // +x columns; rows along -z (sheet) or -y
+    if (s.scene != Scene::Sheet) {
+        g.axis_v[1] = -1;
+        g.axis_v[2] = 0;
+    }
+    out.cloth = make_grid(out.world.get(), g, s.mass, backend);
+    const uint32_t count = s.n * s.n;
+    const double m = double(s.mass) / count;
+    std::vector<float> w(count);
+    out.mass.resize(count);
+    out.rest.resize(3 * size_t(count));
+    const uint32_t heavy = s.scene == Scene::Curtain ? (s.n - 1) * s.n + s.n / 2 : (s.n / 2) * s.n + s.n / 2;
+    const double spacing = 1.0 / (s.n - 1);
+    for (uint32_t r = 0; r < s.n; ++r)
+        for (uint32_t c = 0; c < s.n; ++c) {
+            const uint32_t v = r * s.n + c;
+            out.mass[v] = pinned(s, c, r) ? 0.0 : v == heavy ? m * s.heavy : m;
+            w[v] = out.mass[v] > 0 ? float(1.0 / out.mass[v]) : 0.0f;
+            out.rest[3 * v] = c * spacing;
+            out.rest[3 * v + (s.scene == Scene::Sheet ? 2 : 1)] = -double(r) * spacing;
+        }
+    EXPECT_DRAPE_OK(drape_cloth_set_inverse_masses(out.cloth, w.data(), count));
+    drape_params p{};
+    EXPECT_DRAPE_OK(drape_params_default(&p));
+    p.model = model;
+    p.substeps = s.substeps;
+    p.iterations = s.iterations;
+    for (float& k : p.stiffness) k *= s.stiffness_scale;
+    p.air_drag = 3;  // settles within a few seconds; no force at rest, so the rest state is the same
+    p.max_stretch = 0;  // the springs alone (tethers would only add a one-sided limit)
+    EXPECT_DRAPE_OK(drape_cloth_set_params(out.cloth, &p));
+    const double k[3] = {p.stiffness[0], p.stiffness[1], p.stiffness[2]};
+    out.springs = bench::grid_springs(s.n, s.n, spacing, spacing, k);
+    return out;
+}
+
+std::vector<double> newton_reference(const RestSetup& s) {
+    std::vector<double> x = s.rest;
+    const double g[3] = {0, -9.81, 0};
+    const double residual = bench::solve_static(x, s.mass, s.springs, g);
+    EXPECT_LT(residual, 1e-6) << "reference did not converge";
+    return x;
+}
+
+/// Steps until no vertex moves more than 1e-7 m in a step (at most `seconds`).
+void settle(drape_cloth* c, float seconds) {
+    std::vector<float> last = positions(c);
+    for (int f = 0; f < int(seconds * 60); ++f) {
+        ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
+        const std::vector<float> now = positions(c);
+        float moved = 0;
+        for (size_t i = 0; i < now.size(); ++i) moved = std::max(moved, std::fabs(now[i] - last[i]));
+        if (moved < 1e-7f) return;
+        last = now;
+    }
+}
+
+struct RestError {
+    double vertex;  ///< max |x - x_ref| over the largest displacement of the reference from rest
+    double lowest;  ///< error of the lowest point's displacement, relative
+};
+
+RestError rest_error(const std::vector<float>& x, const std::vector<double>& ref, const std::vector<double>& rest) {
+    double worst = 0, largest = 0, low = 0, low_ref = 0, low_rest = 0;
+    for (size_t v = 0; v < ref.size() / 3; ++v) {
+        double d = 0, disp = 0;
+        for (int a = 0; a < 3; ++a) {
+            d += (x[3 * v + a] - ref[3 * v + a]) * (x[3 * v + a] - ref[3 * v + a]);
+            disp += (ref[3 * v + a] - rest[3 * v + a]) * (ref[3 * v + a] - rest[3 * v + a]);
+        }
+        worst = std::max(worst, std::sqrt(d));
+        largest = std::max(largest, std::sqrt(disp));
+        if (ref[3 * v + 1] < low_ref) {
+            low_ref = ref[3 * v + 1];
+            low = x[3 * v + 1];
+            low_rest = rest[3 * v + 1];
+        }
+    }
+    return {worst / largest, std::fabs(low - low_ref) / std::fabs(low_ref - low_rest)};
+}
+
+const char* scene_name(Scene s) {
+    return s == Scene::Sheet ? "sheet, two edges" : s == Scene::Curtain ? "curtain, top row" : "two corners";
+}
+
+class RestState : public ::testing::TestWithParam<RestScene> {};
+
+// IMPLICIT rests at the springs' equilibrium: every vertex within 0.5 % of the largest
+// displacement, the lowest point's displacement within 0.5 % (issue target), from soft (100 N/m)
+// to stiff (1e5 N/m) springs and with one vertex 1e4 times heavier than the rest, at the default
+// budget (4 x 4) within 10 s. Not here: the taut sheet with stiff springs (2e4 N/m and up), whose
+// sag is transverse to every spring: the prefactored matrix charges it the full k of each spring
+// where the true stiffness is k times the strain, so it creeps towards the same rest state
+// (measured on the 17^2 sheet at 1e5 N/m: 7.9 % after 10 s, 3.4 % after 40 s; at 2e4 N/m 1.0 %).
+TEST_P(RestState, ImplicitRestsAtTheNewtonEquilibrium) {
+    const RestScene s = GetParam();
+    RestSetup setup = make_scene(s, DRAPE_MODEL_IMPLICIT, DRAPE_BACKEND_CPU);
+    const std::vector<double> ref = newton_reference(setup);
+    settle(setup.cloth, 10);
+    const RestError e = rest_error(positions(setup.cloth), ref, setup.rest);
+    std::printf("[ measured ] IMPLICIT %s %u^2, k x %g, heavy x %g: vertex error %.2e, lowest point %.2e of the "
+                "displacement\n",
+                scene_name(s.scene), s.n, s.stiffness_scale, s.heavy, e.vertex, e.lowest);
+    EXPECT_LT(e.vertex, 5e-3);
+    EXPECT_LT(e.lowest, 5e-3);
+}
+
+INSTANTIATE_TEST_SUITE_P(R13, RestState,
+                         ::testing::Values(RestScene{Scene::Sheet, 17, 1}, RestScene{Scene::Curtain, 17, 1},
+                                           RestScene{Scene::Sheet, 33, 1}, RestScene{Scene::Curtain, 33, 1},
+                                           RestScene{Scene::Sheet, 17, 0.05f}, RestScene{Scene::Curtain, 17, 0.05f},
+                                           RestScene{Scene::Curtain, 33, 50},
+                                           RestScene{Scene::Sheet, 17, 1, 1e4f},
+                                           RestScene{Scene::Curtain, 17, 50, 1e4f}));
+
+// The test can see a softer-than-its-springs solver: XPBD at its default budget (16 substeps x 1
+// Jacobi iteration) rests far from the same reference (measured on main before IMPLICIT: +111 %
+// sag on the 17^2 sheet).
+TEST(RestState, XpbdDefaultBudgetRestsVisiblySofter) {
+    const RestScene s{Scene::Sheet, 17, 1};
+    RestSetup setup = make_scene(s, DRAPE_MODEL_XPBD, DRAPE_BACKEND_CPU);
+    const std::vector<double> ref = newton_reference(setup);
+    settle(setup.cloth, 10);
+    const RestError e = rest_error(positions(setup.cloth), ref, setup.rest);
+    std::printf("[ measured ] XPBD 16x1 sheet 17^2: vertex error %.3f, lowest point %.3f of the displacement\n",
+                e.vertex, e.lowest);
+    EXPECT_GT(e.lowest, 0.2);
+}
+
+// CPU_THREADED runs the same residual kernel split over the pool and the same serial solve.
+TEST(RestState, ImplicitThreadedEqualsSingleThreadedBitForBit) {
+    const RestScene s{Scene::Curtain, 65, 1};  // 4225 particles: the passes really split
+    std::vector<float> x[2];
+    const drape_backend backends[2] = {DRAPE_BACKEND_CPU, DRAPE_BACKEND_CPU_THREADED};
+    for (int k = 0; k < 2; ++k) {
+        RestSetup setup = make_scene(s, DRAPE_MODEL_IMPLICIT, backends[k]);
+        for (int f = 0; f < 30; ++f) ASSERT_DRAPE_OK(drape_cloth_step(setup.cloth, 1.0f / 60));
+        x[k] = positions(setup.cloth);
+    }
+    EXPECT_EQ(0, std::memcmp(x[0].data(), x[1].data(), x[0].size() * sizeof(float)));
+}
+
+// Stiff under load: a cloth hanging from two corners, default budget, no tethers: after 3 s its
+// largest structural/shear strain is at most twice the exact equilibrium's (issue target, there at
+// 128^2 and 256^2: 129^2 measured x1.00 and the bench covers it; here 65^2, whose Newton reference
+// takes seconds, not minutes). XPBD 16x1 ran away to strain ~9 at 129^2 without tethers.
+TEST(RestState, ImplicitStiffUnderLoadLong) {
+    const RestScene s{Scene::TwoCorners, 65, 1, 1, 0.2f};
+    RestSetup setup = make_scene(s, DRAPE_MODEL_IMPLICIT, DRAPE_BACKEND_CPU);
+    drape_params p = params_of(setup.cloth);
+    p.air_drag = 0.1f;  // the default: the strain after 3 s, not at rest
+    ASSERT_DRAPE_OK(drape_cloth_set_params(setup.cloth, &p));
+    const std::vector<double> ref = newton_reference(setup);
+    double ref_strain = 0;
+    for (const bench::RefSpring& sp : setup.springs) {
+        if (sp.k == p.stiffness[DRAPE_GROUP_BEND]) continue;  // drape's max_strain: structural + shear
+        double d2 = 0;
+        for (int a = 0; a < 3; ++a) d2 += (ref[3 * sp.i + a] - ref[3 * sp.j + a]) * (ref[3 * sp.i + a] - ref[3 * sp.j + a]);
+        ref_strain = std::max(ref_strain, std::fabs(std::sqrt(d2) / sp.rest - 1));
+    }
+    for (int f = 0; f < 180; ++f) ASSERT_DRAPE_OK(drape_cloth_step(setup.cloth, 1.0f / 60));
+    const float strain = stats_of(setup.cloth).max_strain;
+    std::printf("[ measured ] IMPLICIT two corners 65^2 after 3 s: max strain %.4f, equilibrium %.4f (x%.2f)\n",
+                strain, ref_strain, strain / ref_strain);
+    EXPECT_LE(strain, 2 * ref_strain);
+}
+
+}  // namespace
