@@ -115,7 +115,9 @@ std::string fmt(const char* f, double v) {
 }
 
 const char* model_name(uint32_t m) {
-    return m == DRAPE_MODEL_MASS_SPRING ? "mass_spring" : m == DRAPE_MODEL_PBD ? "pbd" : "xpbd";
+    return m == DRAPE_MODEL_MASS_SPRING ? "mass_spring" : m == DRAPE_MODEL_PBD ? "pbd"
+           : m == DRAPE_MODEL_XPBD        ? "xpbd"
+                                          : "implicit";
 }
 const char* backend_name(uint32_t b) {
     return b == DRAPE_BACKEND_CPU ? "cpu" : b == DRAPE_BACKEND_CPU_THREADED ? "cpu_threaded" : "gles";
@@ -427,7 +429,101 @@ std::vector<Config> precision_configs(const Options& o, bool chain) {
                                        : std::vector<uint32_t>{0, 400};
     if (chain) ms = o.quick ? std::vector<uint32_t>{0} : std::vector<uint32_t>{0, 64, 256, 1000};
     for (uint32_t s : ms) out.push_back({DRAPE_MODEL_MASS_SPRING, s, 1});
+    // IMPLICIT: the automatic budget (4 x 4) and cheaper / dearer ones.
+    for (Config c : {Config{DRAPE_MODEL_IMPLICIT, 0, 0}, Config{DRAPE_MODEL_IMPLICIT, 1, 1}, Config{DRAPE_MODEL_IMPLICIT, 1, 4},
+                     Config{DRAPE_MODEL_IMPLICIT, 2, 2}})
+        if (!o.quick || c.substeps == 0) out.push_back(c);
     return out;
+}
+
+// 2b. Stretch-dominated rest states (accuracy.md R13): curtain pinned along its top row and a
+// horizontal sheet pinned along two opposite edges, run to rest (air drag 3 /s, which exerts no
+// force at rest), against the double-precision Newton equilibrium of the same springs. Error:
+// max vertex distance over the largest displacement from the rest pose, and the same for the
+// lowest point. Jolt 5.5 reference figures (issue 10, "measured on a 2-vCPU x86-64 VM") go next to
+// these in the plot.
+double max_distance(const std::vector<float>& x, const std::vector<double>& xr);
+
+void run_rest(const Options& o) {
+    Csv csv(o.out + "/rest.csv", "scene,size,model,substeps,iterations,ms_median,vertex_error,lowest_error,length_error,"
+                                 "max_strain,ref_max_strain,ok");
+    const std::vector<uint32_t> sizes = o.quick ? std::vector<uint32_t>{17} : std::vector<uint32_t>{17, 33, 65, 129};
+    std::vector<Config> configs = {{DRAPE_MODEL_IMPLICIT, 0, 0}, {DRAPE_MODEL_IMPLICIT, 1, 1}, {DRAPE_MODEL_XPBD, 0, 0},
+                                   {DRAPE_MODEL_MASS_SPRING, 0, 1}};
+    if (!o.quick) configs.push_back({DRAPE_MODEL_XPBD, 64, 1});
+    g_progress.start("rest", int(sizes.size() * 2 * configs.size()));
+    for (const char* scene : {"curtain", "sheet"}) {
+        const bool curtain = scene[0] == 'c';
+        for (uint32_t n : sizes) {
+            GridSpec gs;
+            gs.cols = gs.rows = n;
+            gs.mass = curtain ? 1.0 : 0.5;
+            gs.vertical = curtain;
+            gs.pins = Pins::None;
+            // Reference: same springs, masses, pins.
+            const drape_params base = params_for(DRAPE_MODEL_IMPLICIT);
+            const double k[3] = {base.stiffness[0], base.stiffness[1], base.stiffness[2]};
+            const double spacing = 1.0 / (n - 1);
+            const auto springs = bench::grid_springs(n, n, spacing, spacing, k);
+            std::vector<double> x(size_t(n) * n * 3, 0.0), mass(size_t(n) * n, gs.mass / (n * n));
+            std::vector<float> w(size_t(n) * n, float(n * n / gs.mass));
+            for (uint32_t r = 0; r < n; ++r)
+                for (uint32_t c = 0; c < n; ++c) {
+                    const size_t v = size_t(r) * n + c;
+                    x[3 * v] = c * spacing;
+                    x[3 * v + (curtain ? 1 : 2)] = -double(r) * spacing;
+                    if (curtain ? r == 0 : (c == 0 || c == n - 1)) mass[v] = 0, w[v] = 0;
+                }
+            const std::vector<double> rest = x;
+            const double g[3] = {0, -kG, 0};
+            const double residual = bench::solve_static(x, mass, springs, g);
+            double ref_strain = 0, largest = 0, low_ref = 0, low_rest = 0;
+            size_t low_v = 0;
+            for (const auto& sp : springs) {
+                if (sp.k == k[2]) continue;
+                double d2 = 0;
+                for (int a = 0; a < 3; ++a) d2 += (x[3 * sp.i + a] - x[3 * sp.j + a]) * (x[3 * sp.i + a] - x[3 * sp.j + a]);
+                ref_strain = std::max(ref_strain, std::fabs(std::sqrt(d2) / sp.rest - 1));
+            }
+            for (size_t v = 0; v < mass.size(); ++v) {
+                double d2 = 0;
+                for (int a = 0; a < 3; ++a) d2 += (x[3 * v + a] - rest[3 * v + a]) * (x[3 * v + a] - rest[3 * v + a]);
+                largest = std::max(largest, std::sqrt(d2));
+                if (x[3 * v + 1] < low_ref) low_ref = x[3 * v + 1], low_v = v, low_rest = rest[3 * v + 1];
+            }
+            {
+                std::ofstream f(o.out + "/reference.csv", std::ios::app);
+                f << scene << "_rest," << n << "," << residual << "," << ref_strain << ",newton_static\n";
+            }
+            for (const Config& c : configs) {
+                drape_params p = params_for(c.model);
+                p.substeps = c.substeps;
+                p.iterations = c.iterations;
+                p.air_drag = 3;
+                p.max_stretch = 0;
+                auto sim = make_grid(gs);
+                sim->set_inverse_masses(w);
+                sim->set_params(p);
+                std::vector<double> ms;
+                bool ok = true;
+                drape_status st;
+                const int steps = o.quick ? 180 : 600;
+                for (int step = 0; step < steps; ++step) {
+                    ms.push_back(timed_step(*sim, 1.0f / 60, &st));
+                    if (st != DRAPE_OK) ok = false;
+                }
+                const std::vector<float> xs = sim->positions();
+                const double e_vertex = max_distance(xs, x) / largest;
+                const double e_low = std::fabs(xs[3 * low_v + 1] - low_ref) / std::fabs(low_ref - low_rest);
+                const double e_length = std::fabs(xs[3 * low_v + 1] - low_ref) / std::fabs(low_ref);  // hanging length
+                const drape_stats ss = sim->stats();
+                csv.row("%s,%u,%s,%u,%u,%.4f,%.5g,%.5g,%.5g,%.5g,%.5g,%d", scene, n, model_name(c.model), ss.substeps,
+                        ss.iterations, median(ms), e_vertex, e_low, e_length, ss.max_strain, ref_strain, int(ok));
+                g_progress.tick(std::string(scene) + " " + std::to_string(n) + "^2 " + model_name(c.model));
+            }
+        }
+    }
+    g_progress.finish();
 }
 
 /// Static equilibrium of the cloth hanging from its two top corners (n x n, 1 m, 0.2 kg, the
@@ -746,6 +842,7 @@ void run_precision(const Options& o) {
     run_precision_tethers(o, csv);
     run_precision_sphere(o, csv);
     g_progress.finish();
+    run_rest(o);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -15,8 +15,13 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 REF_VIT = 15e6  # a well-known engine's XPBD cloth, vertex-iterations/s per core (issue 2)
-MODELS = ["mass_spring", "pbd", "xpbd"]
-COLOURS = {"mass_spring": "tab:blue", "pbd": "tab:orange", "xpbd": "tab:green"}
+MODELS = ["mass_spring", "pbd", "xpbd", "implicit"]
+COLOURS = {"mass_spring": "tab:blue", "pbd": "tab:orange", "xpbd": "tab:green", "implicit": "tab:red"}
+# Jolt Physics 5.5 soft bodies on the curtain of rest.csv (identical 12-spring network, pins, masses,
+# stiffness), one core, medians of 5 rounds, as reported in issue 10: (size, iterations, ms/step,
+# hanging-length error at rest).
+JOLT_CURTAIN = [(33, 10, 0.83, 0.0048), (33, 40, 3.3, 0.0005), (65, 20, 5.9, 0.0049), (65, 80, 23.0, 0.0010),
+                (129, 40, 54.0, 0.0054), (129, 80, 105.0, 0.0010)]
 STYLES = {"cpu": "-", "cpu_threaded": "--", "gles": ":"}
 
 
@@ -366,6 +371,50 @@ def precision(out, rows, refs, meta, lines):
     tethers_table(rows, lines)
 
 
+def rest(out, rows, meta, lines):
+    """Stretch-dominated rest states (accuracy.md R13) against the Newton equilibrium."""
+    lines.append("## Stretch-dominated rest states (R13)\n")
+    lines.append("Curtain pinned along its top row (1 kg) and sheet pinned along two opposite edges (0.5 kg), default "
+                 "springs, run to rest with air drag 3/s (no force at rest), against the double-precision Newton "
+                 "equilibrium of the same springs. vertex error = max |x - x_ref| / largest displacement from the rest "
+                 "pose; length error = error of the lowest point / hanging length (the metric of the Jolt figures).\n")
+    lines.append("| scene | size | model | substeps x iterations | ms/step | vertex error | length error | max strain / exact |")
+    lines.append("|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        lines.append(f"| {r['scene']} | {r['size']}^2 | {r['model']} | {r['substeps']}x{r['iterations']} | "
+                     f"{num(r['ms_median']):.3f} | {num(r['vertex_error']):.2e} | {num(r['length_error']):.2e} | "
+                     f"{num(r['max_strain']) / max(num(r['ref_max_strain']), 1e-12):.2f} |")
+    lines.append("")
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.5))
+    for ax, scene in zip(axes, ["curtain", "sheet"]):
+        for model in MODELS:
+            pts = [r for r in rows if r["scene"] == scene and r["model"] == model and fin(r["ms_median"])]
+            if not pts:
+                continue
+            ax.scatter([num(r["ms_median"]) for r in pts], [max(num(r["length_error"]), 1e-7) for r in pts],
+                       color=COLOURS[model], label=model)
+            for r in pts:
+                ax.annotate(f"{r['size']}^2 {r['substeps']}x{r['iterations']}", (num(r["ms_median"]),
+                            max(num(r["length_error"]), 1e-7)), fontsize=6)
+            d = [r for r in pts if model == "implicit" and r["substeps"] == "4" and r["iterations"] == "4"]
+            if d:
+                ax.scatter([num(r["ms_median"]) for r in d], [max(num(r["length_error"]), 1e-7) for r in d],
+                           s=120, facecolors="none", edgecolors="black", label="IMPLICIT default 4x4")
+        if scene == "curtain":
+            ax.scatter([j[2] for j in JOLT_CURTAIN], [j[3] for j in JOLT_CURTAIN], marker="x", color="black",
+                       label="Jolt 5.5, measured on a 2-vCPU x86-64 VM")
+            for j in JOLT_CURTAIN:
+                ax.annotate(f"{j[0]}^2 {j[1]} it", (j[2], j[3]), fontsize=6)
+        log_axes(ax)
+        ax.set_xlabel("ms per 60 Hz step (median)")
+        ax.set_ylabel("hanging-length error at rest")
+        ax.set_title(f"{scene}: rest state vs Newton equilibrium")
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "precision_rest.png"), dpi=110)
+    plt.close(fig)
+
+
 def stress(out, rows, s10it, s8, meta, lines):
     if not rows:
         return
@@ -532,6 +581,7 @@ def main():
         lambda: fig6(out, read(out, "throughput.csv"), meta, lines),
         lambda: threads(out, read(out, "threads.csv"), meta, lines),
         lambda: precision(out, read(out, "precision.csv"), read(out, "reference.csv"), meta, lines),
+        lambda: rest(out, read(out, "rest.csv"), meta, lines),
         lambda: stress(out, read(out, "stress.csv"), read(out, "s10_iterations.csv"), read(out, "s8_colliders.csv"),
                        meta, lines),
         lambda: vibration(out, read(out, "vibration.csv"), meta, lines),
