@@ -95,7 +95,7 @@ run_arm64() {
   slow+='|Tethers.BoundStretch|FollowMovingPins|ForcedInstabilityRollsBack|Collision.RestingContact'
   slow+='|Collision.FastSphere|Collision.FrictionHolds|Collision.NoOrFar|SelfCollision.Folding'
   slow+='|SelfCollision.Threaded|SelfCollision.OffByDefault|Sleep.EveryChange|Sleep.Asleep|Sleep.Unchanged'
-  slow+='|Owner.Teleport|Owner.Inertia|Threading.WorldSteps|Soak|^Abi\.'
+  slow+='|Owner.Teleport|Owner.Inertia|Threading.WorldSteps|Soak|^Abi\.|RestState'
   # Known failure of this build, excluded until fixed: drape_estimate_stability reads its grid or
   # mesh through a pointer to a copy whose scope has ended (api.cpp, DRAPE_CHECK_STRUCT inside
   # if-blocks); clang -Os reuses that stack slot (0 particles or garbage), GCC happens not to.
