@@ -719,11 +719,16 @@ drape_status drape_estimate_stability(const drape_cloth_desc* desc, const drape_
     if (drape_status s = check_cloth_desc(desc, /*need_available=*/false)) return s;
     DRAPE_REQUIRE((grid != nullptr) != (mesh != nullptr), grid ? DRAPE_ERROR_INVALID_ARGUMENT : DRAPE_ERROR_NULL_POINTER,
                   "give exactly one of grid and mesh (the other NULL)");
+    // The current-revision copies live for the whole call (grid/mesh point at them below).
+    drape_grid_desc grid_copy;
+    drape_mesh_desc mesh_copy;
     if (grid) {
-        DRAPE_CHECK_STRUCT(grid, drape_grid_desc);
+        if (drape_status s = read_struct<drape_grid_desc>(grid, "grid", &grid_copy)) return s;
+        grid = &grid_copy;
         if (drape_status s = check_grid(grid)) return s;
     } else {
-        DRAPE_CHECK_STRUCT(mesh, drape_mesh_desc);
+        if (drape_status s = read_struct<drape_mesh_desc>(mesh, "mesh", &mesh_copy)) return s;
+        mesh = &mesh_copy;
         if (drape_status s = check_mesh(mesh)) return s;
     }
     DRAPE_CHECK_STRUCT(params, drape_params);
