@@ -7,6 +7,8 @@
 #include <cstring>
 
 #include <glm/common.hpp>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <glm/geometric.hpp>
 
 #include "backend/cpu/kernels.h"
@@ -229,15 +231,10 @@ void Cloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& kine
     const uint32_t free = uint32_t(implicit_.free.size());
     for (uint32_t it = 0; it < iterations; ++it) {
         for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_residual(c, iterate, target, cur, residual, b, e); });
-        for (uint32_t f = 0; f < free; ++f)
-            for (int a = 0; a < 3; ++a) implicit_.rhs(implicit_.perm[f], a) = residual[implicit_.free[f]][a];
-        implicit_.solver.matrixL().solveInPlace(implicit_.rhs);
-        implicit_.solver.matrixU().solveInPlace(implicit_.rhs);
-        for (uint32_t f = 0; f < free; ++f) {
-            Particle& d = iterate[implicit_.free[f]];
-            const uint32_t row = implicit_.perm[f];
-            d += Particle(float(implicit_.rhs(row, 0)), float(implicit_.rhs(row, 1)), float(implicit_.rhs(row, 2)), 0.0f);
-        }
+        std::vector<glm::vec3>& y = implicit_.rhs;
+        for (uint32_t f = 0; f < free; ++f) y[implicit_.perm[f]] = glm::vec3(residual[implicit_.free[f]]);
+        implicit_.solve_in_place(y.data());
+        for (uint32_t f = 0; f < free; ++f) iterate[implicit_.free[f]] += Particle(y[implicit_.perm[f]], 0.0f);
     }
     // Commit: positions start + d into the old displacement buffer, d becomes the state.
     for_particles([&](uint32_t b, uint32_t e) {
@@ -278,12 +275,32 @@ void Cloth::factor_implicit(float h) {
     const int m = int(implicit_.free.size());
     Eigen::SparseMatrix<double> a(m, m);
     a.setFromTriplets(entries.begin(), entries.end());
-    implicit_.solver.compute(a);
-    // rhs lives in the factor's (permuted) row order: free particle f is row perm[f].
+    Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(a);  // AMD ordering
+    // L in float, compressed columns with the diagonal first (Eigen's order); rows of the solve are
+    // in the factor's permuted order: free particle f is row perm[f].
+    const Eigen::SparseMatrix<double>& l = llt.matrixL().nestedExpression();
+    implicit_.col.assign(l.outerIndexPtr(), l.outerIndexPtr() + m + 1);
+    implicit_.row.assign(l.innerIndexPtr(), l.innerIndexPtr() + l.nonZeros());
+    implicit_.value.assign(l.valuePtr(), l.valuePtr() + l.nonZeros());
     implicit_.perm.resize(m);
-    for (int f = 0; f < m; ++f) implicit_.perm[f] = uint32_t(implicit_.solver.permutationP().indices()[f]);
-    implicit_.rhs.resize(m, 3);
+    for (int f = 0; f < m; ++f) implicit_.perm[f] = uint32_t(llt.permutationP().indices()[f]);
+    implicit_.rhs.resize(m);
     implicit_.h = h;
+}
+
+void Cloth::ImplicitSolve::solve_in_place(glm::vec3* y) const {
+    // L L^T y' = y: forward by columns, then backward (three right-hand sides in one pass each).
+    const uint32_t m = uint32_t(perm.size());
+    for (uint32_t j = 0; j < m; ++j) {
+        const glm::vec3 yj = y[j] / value[col[j]];
+        y[j] = yj;
+        for (uint32_t k = col[j] + 1; k < col[j + 1]; ++k) y[row[k]] -= value[k] * yj;
+    }
+    for (uint32_t j = m; j-- > 0;) {
+        glm::vec3 yj = y[j];
+        for (uint32_t k = col[j] + 1; k < col[j + 1]; ++k) yj -= value[k] * y[row[k]];
+        y[j] = yj / value[col[j]];
+    }
 }
 
 template <class Fn>

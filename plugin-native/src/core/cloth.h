@@ -6,8 +6,6 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
 #include <glm/ext/vector_double3.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -130,8 +128,10 @@ protected:
         std::vector<float> key;       ///< stiffness, damping and inverse masses it was built from
         std::vector<uint32_t> free;   ///< particle of each free row, in particle order
         std::vector<uint32_t> perm;   ///< factor row of free particle f
-        Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> solver;  // AMD ordering
-        Eigen::Matrix<double, Eigen::Dynamic, 3> rhs;
+        std::vector<uint32_t> col, row;  ///< Cholesky factor L, compressed columns, diagonal first
+        std::vector<float> value;
+        std::vector<glm::vec3> rhs;   ///< scratch, one per free row
+        void solve_in_place(glm::vec3* y) const;
     } implicit_;
     template <class KinematicAt>
     void implicit_substep(kernels::SubstepContext& c, const KinematicAt& kinematic_at);
