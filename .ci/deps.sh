@@ -6,9 +6,9 @@ packages=(
   libeigen3-dev libglm-dev libgtest-dev googletest
   libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
   glslang-tools libstb-dev python3-matplotlib
-  imagemagick  # issue 3: demo GIFs
-  clang-14 libclang-rt-14-dev g++-aarch64-linux-gnu qemu-user  # issue 7: sanitizers, libFuzzer, arm64 under qemu
-  g++-mingw-w64-x86-64  # issue 4: Windows x86_64 drape.dll for the Unity package (npm run pack)
+  imagemagick  # demo GIFs
+  clang-14 libclang-rt-14-dev g++-aarch64-linux-gnu qemu-user  # sanitizers, libFuzzer, arm64 under qemu
+  g++-mingw-w64-x86-64  # Windows x86_64 drape.dll for the Unity package (npm run pack)
   wine64  # Windows native suite under Wine (.ci/windows-tests.sh)
 )
 missing=()

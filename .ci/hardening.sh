@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Hardening checks (issue 7), run by .ci/test.sh (so by `npm test` and .ci/run):
+# Hardening checks, run by .ci/test.sh (so by `npm test` and .ci/run):
 #   asan   whole native suite (unit, physics, GLES on Mesa, soak, threading, fuzz corpus replay)
 #          under AddressSanitizer + UndefinedBehaviorSanitizer + LeakSanitizer, halt on first report
 #   fuzz   libFuzzer over the C ABI for DRAPE_FUZZ_SECONDS (60 under CI, 20 otherwise)

@@ -4,11 +4,11 @@ set -euo pipefail
 bash .ci/build.sh release
 ctest --preset release
 
-# C#: package checks, Unity compile checks, NUnit tests of Drape.Core (issue 4).
+# C#: package checks, Unity compile checks, NUnit tests of Drape.Core.
 bash .ci/dotnet-test.sh
 # Benchmark smoke run (quick mode, < 1 min): keeps drape_bench and its plots working; no timing checks.
 bash tests/bench/run.sh --quick --out build/release/bench-quick
-# Hardening (issue 7): native suite under ASan+UBSan+LSan, libFuzzer on the C ABI (60 s under CI),
+# Hardening: native suite under ASan+UBSan+LSan, libFuzzer on the C ABI (60 s under CI),
 # threading tests under TSan, native suite on arm64 under qemu-user. Parts: .ci/hardening.sh asan|fuzz|tsan|arm64
 bash .ci/hardening.sh
 # Unity source plug-in (Android/iOS players, no NDK): up to date, compiles for iOS, builds as IL2CPP

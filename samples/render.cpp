@@ -1,4 +1,4 @@
-// Headless pictures of the demo scenes with the GLES backend (issue 3): each cloth's simulation
+// Headless pictures of the demo scenes with the GLES backend: each cloth's simulation
 // writes positions + normals straight into the vertex buffer that is drawn (no CPU copy); frames
 // are rendered offscreen on Mesa (surfaceless EGL), saved as PNG (stb_image_write), and ImageMagick
 // turns each scene into an animated GIF.  Usage: drape_render [out_dir=demo-out] [frames=90]

@@ -1,5 +1,5 @@
 # Cross toolchain: Debian's aarch64-linux-gnu GCC (package g++-aarch64-linux-gnu), the Android
-# arm64 proxy (hardening, issue 7). Tests run under qemu-user: ctest prefixes every test command
+# arm64 proxy (hardening). Tests run under qemu-user: ctest prefixes every test command
 # with CMAKE_CROSSCOMPILING_EMULATOR (no binfmt_misc needed). Preset: arm64.
 set(CMAKE_SYSTEM_NAME Linux)
 set(CMAKE_SYSTEM_PROCESSOR aarch64)

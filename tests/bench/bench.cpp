@@ -303,7 +303,7 @@ struct Monitor {
 };
 
 // ---------------------------------------------------------------------------------------------
-// 1. Throughput (issue 2 seed, paper Fig. 6) and thread sweep
+// 1. Throughput (seed, paper Fig. 6) and thread sweep
 
 struct Timing {
     double ms_median = NAN, ms_min = NAN, vit_per_s = NAN;
@@ -440,7 +440,7 @@ std::vector<Config> precision_configs(const Options& o, bool chain) {
 // horizontal sheet pinned along two opposite edges, run to rest (air drag 3 /s, which exerts no
 // force at rest), against the double-precision Newton equilibrium of the same springs. Error:
 // max vertex distance over the largest displacement from the rest pose, and the same for the
-// lowest point. Jolt 5.5 reference figures (issue 10, "measured on a 2-vCPU x86-64 VM") go next to
+// lowest point. Jolt 5.5 reference figures ("measured on a 2-vCPU x86-64 VM") go next to
 // these in the plot.
 double max_distance(const std::vector<float>& x, const std::vector<double>& xr);
 

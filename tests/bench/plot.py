@@ -14,11 +14,11 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-REF_VIT = 15e6  # a well-known engine's XPBD cloth, vertex-iterations/s per core (issue 2)
+REF_VIT = 15e6  # a well-known engine's XPBD cloth, vertex-iterations/s per core
 MODELS = ["mass_spring", "pbd", "xpbd", "implicit"]
 COLOURS = {"mass_spring": "tab:blue", "pbd": "tab:orange", "xpbd": "tab:green", "implicit": "tab:red"}
 # Jolt Physics 5.5 soft bodies on the curtain of rest.csv (identical 12-spring network, pins, masses,
-# stiffness), one core, medians of 5 rounds, as reported in issue 10: (size, iterations, ms/step,
+# stiffness), one core, medians of 5 rounds, as reported in (size, iterations, ms/step,
 # hanging-length error at rest).
 JOLT_CURTAIN = [(33, 10, 0.83, 0.0048), (33, 40, 3.3, 0.0005), (65, 20, 5.9, 0.0049), (65, 80, 23.0, 0.0010),
                 (129, 40, 54.0, 0.0054), (129, 80, 105.0, 0.0010)]
@@ -143,7 +143,7 @@ def fig6(out, rows, meta, lines):
     sizes = sorted({int(r["size"]) for r in rows})
     backends = [b for b in ("cpu", "cpu_threaded", "gles") if any(r["backend"] == b for r in rows)]
     idx = {(r["model"], r["backend"], int(r["size"])): r for r in rows}
-    lines.append("## Throughput (issue 2 seed, paper Fig. 6)\n")
+    lines.append("## Throughput (seed, paper Fig. 6)\n")
     lines.append("Hanging cloth (1 m, 0.2 kg, two top corners pinned), library defaults per model "
                  f"(XPBD/PBD: {default_cfg(meta)[0]} substeps x {default_cfg(meta)[1]} iteration(s), tethers max_stretch "
                  f"{meta.get('default_max_stretch', '?')}; MASS_SPRING: automatic substeps from the stability bound), "

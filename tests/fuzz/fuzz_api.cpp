@@ -1,4 +1,4 @@
-// libFuzzer target over the whole C ABI (hardening, issue 7).
+// libFuzzer target over the whole C ABI (hardening).
 //
 // The input bytes are a program: each step takes an opcode byte and then the bytes its call
 // needs (counts, indices, floats drawn from a table of nasty values or raw bits, struct sizes,
@@ -12,7 +12,7 @@
 // requests that the library must refuse (huge counts, overflowing products) are still made.
 //
 // Run: build/asan/tests/fuzz/drape_fuzz_api tests/fuzz/corpus -max_total_time=60
-// New API (colliders, sleep, drag, owner: issue 5) is fuzzed when the header declares it.
+// New API (colliders, sleep, drag, owner) is fuzzed when the header declares it.
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Colliders (issue 5): resting contact without penetration on every shape, fast colliders do not
+// Colliders: resting contact without penetration on every shape, fast colliders do not
 // tunnel, friction holds a cloth on a box corner, no/far colliders change nothing, bad input.
 // Penetration is measured here with the test's own distance functions (not the library's).
 #include <algorithm>

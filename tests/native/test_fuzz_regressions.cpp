@@ -1,5 +1,5 @@
 // Inputs the fuzzer (tests/fuzz) found to break the library, replayed as plain tests
-// (hardening, issue 7). Each test names the reproducer kept in tests/fuzz/regressions/.
+// (hardening). Each test names the reproducer kept in tests/fuzz/regressions/.
 #include "drape_test_util.h"
 
 using namespace drape_test;

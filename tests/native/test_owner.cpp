@@ -1,4 +1,4 @@
-// Owner transform (issue 5): pins follow the owner; inertia 0 carries the cloth rigidly (local
+// Owner transform: pins follow the owner; inertia 0 carries the cloth rigidly (local
 // space), 1 leaves it to swing (world space); a teleport moves the cloth instead of stretching it.
 #include <algorithm>
 #include <cmath>

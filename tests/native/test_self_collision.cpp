@@ -1,4 +1,4 @@
-// Self-collision (issue 5): a cloth folding onto itself does not pass through itself; off by
+// Self-collision: a cloth folding onto itself does not pass through itself; off by
 // default (bit-identical to never asking); threaded == single-threaded bit for bit; bad input.
 // Pass-through and closeness are measured here with the test's own geometry, not the library's.
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Sleeping (issue 5): a cloth at rest stops stepping (same bits, ~no time); every kind of change
+// Sleeping: a cloth at rest stops stepping (same bits, ~no time); every kind of change
 // wakes it; unchanged re-sends of colliders, pins or parameters do not.
 #include <chrono>
 #include <cstring>

@@ -1,4 +1,4 @@
-// Thread-safety rules of drape.h (hardening, issue 7), exercised so that ThreadSanitizer (preset
+// Thread-safety rules of drape.h (hardening), exercised so that ThreadSanitizer (preset
 // tsan, label "tsan") sees every pattern the header allows:
 //  - one world stepping several CPU_THREADED and CPU cloths in one call (the worker pool, and
 //    single-threaded cloths spread over it);

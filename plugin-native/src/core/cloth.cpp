@@ -138,13 +138,13 @@ void Cloth::rebuild_tethers() {
 }
 
 void Cloth::set_params(const drape_params& p) {
-    if (std::memcmp(&p, &params_, sizeof p) != 0) wake();  // issue 5
+    if (std::memcmp(&p, &params_, sizeof p) != 0) wake();
     params_ = p;
     refresh_derived();
 }
 
 void Cloth::set_inverse_masses(const float* inverse_masses) {
-    wake();  // issue 5
+    wake();
     const uint32_t n = topo_.particle_count;
     std::vector<float> w(n, INFINITY);
     for (uint32_t v = 0; v < topo_.vertex_count; ++v) {
@@ -160,7 +160,7 @@ void Cloth::set_inverse_masses(const float* inverse_masses) {
 }
 
 void Cloth::set_pins(const drape_pin* pins, uint32_t count) {
-    if (pins_change(pins, count)) wake();  // issue 5
+    if (pins_change(pins, count)) wake();
     for (uint32_t k = 0; k < count; ++k) {
         const uint32_t i = topo_.vertex_to_particle[pins[k].vertex];
         pinned_[i] = 1;
@@ -170,7 +170,7 @@ void Cloth::set_pins(const drape_pin* pins, uint32_t count) {
 }
 
 void Cloth::release_pins(const uint32_t* vertices, uint32_t count) {
-    if (count) wake();  // issue 5
+    if (count) wake();
     for (uint32_t k = 0; k < count; ++k) {
         const uint32_t i = topo_.vertex_to_particle[vertices[k]];
         pinned_[i] = 0;
@@ -180,7 +180,7 @@ void Cloth::release_pins(const uint32_t* vertices, uint32_t count) {
 }
 
 void Cloth::set_positions(const float* xyz) {
-    wake();  // issue 5
+    wake();
     for (uint32_t v = 0; v < topo_.vertex_count; ++v) {
         const uint32_t i = topo_.vertex_to_particle[v];
         const glm::vec3 p(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
@@ -192,7 +192,7 @@ void Cloth::set_positions(const float* xyz) {
 }
 
 void Cloth::set_velocities(const float* xyz) {
-    wake();  // issue 5
+    wake();
     for (uint32_t v = 0; v < topo_.vertex_count; ++v) {
         const uint32_t i = topo_.vertex_to_particle[v];
         if (buffers_[cur_][i].w == 0.0f) continue;  // kinematic particles follow their targets
@@ -333,7 +333,7 @@ void Cloth::recentre() {
 }
 
 Result Cloth::step(float dt) {
-    if (skip_step_asleep()) return {};  // issue 5: asleep -> no work (core/interaction.cpp)
+    if (skip_step_asleep()) return {};  // asleep -> no work (core/interaction.cpp)
     recentre();
     const auto t0 = std::chrono::steady_clock::now();
     const uint32_t n = topo_.particle_count;
@@ -444,8 +444,8 @@ Result Cloth::step(float dt) {
                 kernels::tether(tether_anchor_.data(), tether_length_.data(), x, d, b, e);
             });
         }
-        if (sc_.enabled) self_collision_substep();  // issue 5: self-collision (core/self_collision.cpp)
-        // issue 5: touch drag + colliders on the committed positions (core/interaction.cpp)
+        if (sc_.enabled) self_collision_substep();  // self-collision (core/self_collision.cpp)
+        // touch drag + colliders on the committed positions (core/interaction.cpp)
         if (!ix_.colliders.empty() || !ix_.drag_particles.empty()) interaction_substep(sub, substeps);
         h_prev_ = h;
         fresh_ = false;
@@ -503,7 +503,7 @@ Result Cloth::step(float dt) {
         fresh_ = backup_fresh;
         // kinematic_target_ keeps the requested pin and grab moves: the next step makes them.
         ++stats_.unstable_steps;
-        interaction_end_step(dt, true);  // issue 5
+        interaction_end_step(dt, true);
         return {DRAPE_ERROR_UNSTABLE,
                 std::string("step diverged (") + (total.finite ? "runaway strain" : "non-finite positions") +
                     " with " + std::to_string(substeps) + " substeps of " + std::to_string(h) +
@@ -511,7 +511,7 @@ Result Cloth::step(float dt) {
     }
     stats_.max_strain = total.max_strain;
     stats_.rms_strain = total.count ? std::sqrt(total.sum_sq / float(total.count)) : 0.0f;
-    interaction_end_step(dt, false);  // issue 5: colliders advance, drag consumed, sleep check
+    interaction_end_step(dt, false);  // colliders advance, drag consumed, sleep check
     return {};
 }
 

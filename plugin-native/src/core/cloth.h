@@ -12,9 +12,9 @@
 
 #include "backend/cpu/kernels.h"
 #include "backend/cpu/thread_pool.h"
-#include "core/interaction.h"  // issue 5: colliders, drag, owner, sleep
+#include "core/interaction.h"  // colliders, drag, owner, sleep
 #include "core/params.h"
-#include "core/self_collision.h"  // issue 5: self-collision
+#include "core/self_collision.h"  // self-collision
 #include "core/topology.h"
 #include "drape/drape.h"
 
@@ -56,7 +56,7 @@ public:
     void read(const drape_vertex_layout& layout, void* dst) const;
     void stats(drape_stats* out) const;
 
-    // ---- issue 5: colliders, sleep, touch drag, grabs, owner (defined in core/interaction.cpp) ----
+    // ---- colliders, sleep, touch drag, grabs, owner (defined in core/interaction.cpp) ----
     void set_colliders(const drape_collider* colliders, uint32_t count);
     void set_sleep(float threshold, float time);
     void wake();
@@ -70,7 +70,7 @@ public:
     void grab_release(uint32_t touch_id);
     void set_owner(const drape_owner& owner);
     uint64_t collide_tests() const { return ix_.collide_tests; }
-    // issue 5: self-collision (defined in core/self_collision.cpp)
+    // self-collision (defined in core/self_collision.cpp)
     void set_self_collision(bool enabled, float thickness, float friction);
     const SelfCollision& self_collision() const { return sc_; }
     uint32_t grab_count() const { return uint32_t(ix_.grabs.size()); }
@@ -98,12 +98,12 @@ protected:
     void refresh_derived();  // after params or masses change
     void recentre();         // moves origin_ near the cloth, shifting every held position
     glm::dvec3 origin_{0.0};
-    // issue 5 hooks in step() (core/interaction.cpp)
+    // hooks in step() (core/interaction.cpp)
     bool skip_step_asleep();
     void interaction_substep(uint32_t sub, uint32_t substeps);
     void interaction_end_step(float dt, bool rolled_back);
     Interaction ix_;
-    void self_collision_substep();  // issue 5 hook in step() (core/self_collision.cpp)
+    void self_collision_substep();  // hook in step() (core/self_collision.cpp)
     SelfCollision sc_;
     template <class Fn>
     void for_particles(Fn&& fn);

@@ -1,4 +1,4 @@
-// Cloth's interaction with the world and the user (issue 5): colliders, sleeping, touch drag
+// Cloth's interaction with the world and the user: colliders, sleeping, touch drag
 // (paper eq. 9), pick-and-hold grabs and the owner transform. The C ABI (src/api) has validated
 // every input. The step hooks are called from Cloth::step (core/cloth.cpp).
 #include <algorithm>

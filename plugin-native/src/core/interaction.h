@@ -1,4 +1,4 @@
-// Run-time state of what a cloth interacts with (issue 5): colliders, touch drag, grabs, the
+// Run-time state of what a cloth interacts with: colliders, touch drag, grabs, the
 // owner transform, and sleeping. Owned by Cloth (member ix_); the Cloth member functions that use
 // it are defined in core/interaction.cpp, and Cloth::step calls three small hooks:
 //   skip_step_asleep() at the top, interaction_substep() after each substep's solve (on the

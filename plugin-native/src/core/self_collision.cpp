@@ -1,4 +1,4 @@
-// Self-collision (issue 5): the setting and the per-substep pass. The C ABI (src/api) has validated
+// Self-collision: the setting and the per-substep pass. The C ABI (src/api) has validated
 // the input. Kernels and the method: backend/cpu/self_collide.h.
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// Self-collision kernels (issue 5): particle-particle contacts found through a spatial hash.
+// Self-collision kernels: particle-particle contacts found through a spatial hash.
 //
 // The cloth is a set of particles of radius thickness/2: two particles that are not neighbours in
 // the rest mesh are kept at least `thickness` apart (Mueller et al., "Position based dynamics",
