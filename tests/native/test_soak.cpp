@@ -259,8 +259,12 @@ struct Soak {
 
 // Runs `total` rounds and checks: every round ran, the heap between rounds comes back to where it
 // was after two warm-up rounds, enough steady steps were checked and none of them allocated.
-void run_soak(Soak& soak, int total, const char* name, size_t slack_bytes) {
-    size_t baseline = 0, peak_between_rounds = 0, last = 0;
+// `peak_too`: bound the largest heap seen between rounds and the last one. Without it (GLES),
+// the smallest heap over the second half of the rounds: Mesa's pools grow with the largest program
+// compiled so far and shrink again (measured under ASan: one round 735 KB above the baseline, the
+// last at +23 KB), while a leak raises every later round.
+void run_soak(Soak& soak, int total, const char* name, size_t slack_bytes, bool peak_too) {
+    size_t baseline = 0, peak_between_rounds = 0, last = 0, late_floor = SIZE_MAX;
     int rounds = 0;
     for (; rounds < total; ++rounds) {
         soak.round();
@@ -268,6 +272,7 @@ void run_soak(Soak& soak, int total, const char* name, size_t slack_bytes) {
         last = live_heap_bytes();
         if (rounds == 1) baseline = last;  // after two warm-up rounds
         if (rounds >= 1) peak_between_rounds = std::max(peak_between_rounds, last);
+        if (rounds >= total / 2) late_floor = std::min(late_floor, last);
     }
     std::printf("%s: %d rounds, %llu cloths, %llu frames, %llu rolled-back steps; heap between rounds: "
                 "baseline %zu B, last %zu B, peak %zu B; %llu allocations in %llu checked steps\n",
@@ -277,8 +282,8 @@ void run_soak(Soak& soak, int total, const char* name, size_t slack_bytes) {
     EXPECT_EQ(rounds, total);
     // Nothing is alive between rounds: the heap must come back to where it was (a little slack
     // for allocator bookkeeping and hash-table buckets sized by the largest round).
-    EXPECT_LE(last, baseline + slack_bytes) << "heap grew over " << rounds << " rounds";
-    EXPECT_LE(peak_between_rounds, baseline + slack_bytes);
+    EXPECT_LE(peak_too ? last : late_floor, baseline + slack_bytes) << "heap grew over " << rounds << " rounds";
+    if (peak_too) EXPECT_LE(peak_between_rounds, baseline + slack_bytes);
     EXPECT_GT(soak.checked_steps, uint64_t(total));
     EXPECT_EQ(soak.step_news, 0u) << "steps allocated after their first frame";
 }
@@ -287,7 +292,7 @@ void run_soak(Soak& soak, int total, const char* name, size_t slack_bytes) {
 
 TEST(Soak, ManyClothsRandomChangesNoNanNoGrowthNoAllocationInStep) {
     Soak soak;
-    run_soak(soak, soak_rounds(40), "soak", 64 * 1024);
+    run_soak(soak, soak_rounds(40), "soak", 64 * 1024, true);
 }
 
 #ifdef DRAPE_TEST_GLES
@@ -306,7 +311,7 @@ TEST(Soak, GlesClothsJoinTheSoakNoGrowthNoAllocationInStep) {
         Soak soak;
         soak.gles_per_round = 2;
         // Mesa keeps compiled programs and its own pools: more slack than the CPU-only soak.
-        run_soak(soak, std::max(4, soak_rounds(40) / 4), "soak with GLES", 256 * 1024);
+        run_soak(soak, std::max(4, soak_rounds(40) / 4), "soak with GLES", 256 * 1024, false);
         EXPECT_EQ(GlNameCounts::take(), names_before) << "GL objects left behind by destroyed cloths";
     }
     gl.destroy();
