@@ -334,7 +334,6 @@ void Cloth::recentre() {
 
 Result Cloth::step(float dt) {
     if (skip_step_asleep()) return {};  // asleep -> no work (core/interaction.cpp)
-    recentre();
     const auto t0 = std::chrono::steady_clock::now();
     const uint32_t n = topo_.particle_count;
     const NeighbourTable& nb = topo_.nbr;
@@ -512,6 +511,7 @@ Result Cloth::step(float dt) {
     stats_.max_strain = total.max_strain;
     stats_.rms_strain = total.count ? std::sqrt(total.sum_sq / float(total.count)) : 0.0f;
     interaction_end_step(dt, false);  // colliders advance, drag consumed, sleep check
+    recentre();  // after the step, so a rolled-back step changes nothing
     return {};
 }
 
