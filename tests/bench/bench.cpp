@@ -478,14 +478,9 @@ void run_rest(const Options& o) {
             const std::vector<double> rest = x;
             const double g[3] = {0, -kG, 0};
             const double residual = bench::solve_static(x, mass, springs, g);
-            double ref_strain = 0, largest = 0, low_ref = 0, low_rest = 0;
+            const double ref_strain = bench::max_strain(x, springs, k[2]);
+            double largest = 0, low_ref = 0, low_rest = 0;
             size_t low_v = 0;
-            for (const auto& sp : springs) {
-                if (sp.k == k[2]) continue;
-                double d2 = 0;
-                for (int a = 0; a < 3; ++a) d2 += (x[3 * sp.i + a] - x[3 * sp.j + a]) * (x[3 * sp.i + a] - x[3 * sp.j + a]);
-                ref_strain = std::max(ref_strain, std::fabs(std::sqrt(d2) / sp.rest - 1));
-            }
             for (size_t v = 0; v < mass.size(); ++v) {
                 double d2 = 0;
                 for (int a = 0; a < 3; ++a) d2 += (x[3 * v + a] - rest[3 * v + a]) * (x[3 * v + a] - rest[3 * v + a]);
@@ -554,14 +549,7 @@ TwoCornerRef two_corner_reference(const Options& o, uint32_t n) {
     mass[0] = mass[n - 1] = 0;
     const double g[3] = {0, -kG, 0};
     r.residual = bench::solve_static(r.x, mass, springs, g);
-    r.max_strain = 0;
-    for (const auto& s : springs) {
-        if (s.k == k[2]) continue;  // drape's max_strain covers structural + shear
-        const double* a = &r.x[3 * s.i];
-        const double* b = &r.x[3 * s.j];
-        double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-        r.max_strain = std::max(r.max_strain, std::fabs(std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / s.rest - 1));
-    }
+    r.max_strain = bench::max_strain(r.x, springs, k[2]);
     std::ofstream f(o.out + "/reference.csv", std::ios::app);
     f << "two_corners," << n << "," << r.residual << "," << r.max_strain << ",newton_static\n";
     return r;

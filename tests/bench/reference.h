@@ -8,6 +8,7 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -36,6 +37,18 @@ inline std::vector<RefSpring> grid_springs(uint32_t cols, uint32_t rows, double 
                 out.push_back({r * cols + c, uint32_t(rr) * cols + uint32_t(cc), k[o.g], std::sqrt(dx * dx + dy * dy)});
             }
     return out;
+}
+
+/// Largest |strain| over the springs at positions x, leaving out those of stiffness bend_k (drape's
+/// max_strain covers the structural and shear springs).
+inline double max_strain(const std::vector<double>& x, const std::vector<RefSpring>& springs, double bend_k) {
+    double worst = 0;
+    for (const RefSpring& s : springs) {
+        if (s.k == bend_k) continue;
+        const double d[3] = {x[3 * s.i] - x[3 * s.j], x[3 * s.i + 1] - x[3 * s.j + 1], x[3 * s.i + 2] - x[3 * s.j + 2]};
+        worst = std::max(worst, std::fabs(std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / s.rest - 1));
+    }
+    return worst;
 }
 
 /// Minimises the energy from x (3 doubles per particle, updated in place). mass[i] = 0 pins i.
