@@ -48,25 +48,12 @@ namespace Drape.Core
                                               ReadOnlySpan<int> indices, float weldDistance)
         {
             if (world == null) throw new ArgumentNullException(nameof(world));
-            if (positions.Length % 3 != 0)
-                throw new ArgumentException("positions holds xyz triples; length " + positions.Length +
-                                            " is not a multiple of 3", nameof(positions));
             desc.StructSize = SizeOf.ClothDesc;
             IntPtr cloth;
             fixed (float* p = positions)
             fixed (int* i = indices)
             {
-                var mesh = new MeshDesc
-                {
-                    StructSize = SizeOf.MeshDesc,
-                    VertexCount = (uint)(positions.Length / 3),
-                    Positions = (IntPtr)p,
-                    IndexCount = (uint)indices.Length,
-                    // Unity's int indices are reinterpreted as uint32: a negative one becomes huge and
-                    // is refused natively with ErrorIndexOutOfRange.
-                    Indices = (IntPtr)i,
-                    WeldDistance = weldDistance,
-                };
+                var mesh = MeshDesc.Pinned(p, positions.Length, i, indices.Length, weldDistance);
                 lock (world.Handle.Sync)
                 {
                     NativeMethods.Check(NativeMethods.drape_cloth_create_mesh(world.Handle, ref desc, ref mesh,

@@ -28,24 +28,13 @@ namespace Drape.Core
         public static unsafe StabilityEstimate ForMesh(ReadOnlySpan<float> positions, ReadOnlySpan<int> indices,
                                                        float weldDistance, float totalMass, Params parameters, float dt)
         {
-            if (positions.Length % 3 != 0)
-                throw new ArgumentException("positions holds xyz triples; length " + positions.Length +
-                                            " is not a multiple of 3", nameof(positions));
             var desc = new ClothDesc { StructSize = SizeOf.ClothDesc, Backend = Backend.Cpu, TotalMass = totalMass };
             parameters.StructSize = SizeOf.Params;
             var estimate = new StabilityEstimate { StructSize = SizeOf.StabilityEstimate };
             fixed (float* p = positions)
             fixed (int* i = indices)
             {
-                var mesh = new MeshDesc
-                {
-                    StructSize = SizeOf.MeshDesc,
-                    VertexCount = (uint)(positions.Length / 3),
-                    Positions = (IntPtr)p,
-                    IndexCount = (uint)indices.Length,
-                    Indices = (IntPtr)i,
-                    WeldDistance = weldDistance,
-                };
+                var mesh = MeshDesc.Pinned(p, positions.Length, i, indices.Length, weldDistance);
                 NativeMethods.Check(NativeMethods.drape_estimate_stability(ref desc, IntPtr.Zero, ref mesh, ref parameters,
                                                                            dt, ref estimate),
                                     "drape_estimate_stability");

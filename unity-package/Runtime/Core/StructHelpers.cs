@@ -24,6 +24,29 @@ namespace Drape.Core
         }
     }
 
+    public partial struct MeshDesc
+    {
+        /// <summary>A mesh description over pinned arrays: xyz triples (positionFloats of them) and
+        /// a triangle list. Unity's int indices are reinterpreted as uint32: a negative one becomes
+        /// huge and is refused natively with ErrorIndexOutOfRange.</summary>
+        internal static unsafe MeshDesc Pinned(float* positions, int positionFloats, int* indices, int indexCount,
+                                               float weldDistance)
+        {
+            if (positionFloats % 3 != 0)
+                throw new System.ArgumentException("positions holds xyz triples; length " + positionFloats +
+                                                   " is not a multiple of 3", "positions");
+            return new MeshDesc
+            {
+                StructSize = SizeOf.MeshDesc,
+                VertexCount = (uint)(positionFloats / 3),
+                Positions = (System.IntPtr)positions,
+                IndexCount = (uint)indexCount,
+                Indices = (System.IntPtr)indices,
+                WeldDistance = weldDistance,
+            };
+        }
+    }
+
     public partial struct ColliderDesc
     {
         public static ColliderDesc Sphere(uint id, Float3 center, float radius, float margin = 0.005f, float friction = 0.5f) =>
