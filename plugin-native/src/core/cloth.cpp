@@ -7,8 +7,6 @@
 #include <cstring>
 
 #include <glm/common.hpp>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
 #include <glm/geometric.hpp>
 
 #include "backend/cpu/kernels.h"
@@ -82,20 +80,10 @@ void Cloth::refresh_derived() {
     // IMPLICIT: refactor now (not in step, which must not allocate) when what the matrix depends
     // on changed: effective masses (which particles are kinematic, masses), stiffness, damping.
     if (params_.model == DRAPE_MODEL_IMPLICIT) {
-        std::vector<float>& key = implicit_.key;
-        const size_t size = 4 + size_t(n);
-        bool changed = key.size() != size;
-        key.resize(size);
-        auto set = [&](size_t k, float v) {
-            if (key[k] != v) changed = true;
-            key[k] = v;
-        };
-        for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) set(size_t(g), params_.stiffness[g]);
-        set(3, params_.damping);
-        for (uint32_t i = 0; i < n; ++i) set(4 + i, buffers_[cur_][i].w);
-        if (changed || implicit_.h == 0) factor_implicit(last_h_ > 0 ? last_h_ : kDefaultH / float(kAutoSubstepsImplicit));
+        if (implicit_.inputs_changed(params_, buffers_[cur_].data(), n) || implicit_.h() == 0)
+            factor_implicit(last_h_ > 0 ? last_h_ : kDefaultH / float(kAutoSubstepsImplicit));
     } else {
-        implicit_.key.clear();
+        implicit_.clear();
     }
     if (kinematic_ != tethered_kinematic_) rebuild_tethers();
     for (uint32_t i = 0; i < n; ++i)
@@ -226,15 +214,11 @@ void Cloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& kine
     Particle* residual = buffers_[spare_].data();
     for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_predict(c, cur, disp, target, iterate, b, e); });
     for (uint32_t k : kinematic_) target[k] = iterate[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
-    if (!(std::fabs(implicit_.h / c.h - 1.0f) < kImplicitRefactor)) factor_implicit(c.h);  // dt changed a lot
+    if (!(std::fabs(implicit_.h() / c.h - 1.0f) < kImplicitRefactor)) factor_implicit(c.h);  // dt changed a lot
     const uint32_t iterations = iterations_for();
-    const uint32_t free = uint32_t(implicit_.free.size());
     for (uint32_t it = 0; it < iterations; ++it) {
         for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_residual(c, iterate, target, cur, residual, b, e); });
-        std::vector<glm::vec3>& y = implicit_.rhs;
-        for (uint32_t f = 0; f < free; ++f) y[implicit_.perm[f]] = glm::vec3(residual[implicit_.free[f]]);
-        implicit_.solve_in_place(y.data());
-        for (uint32_t f = 0; f < free; ++f) iterate[implicit_.free[f]] += Particle(y[implicit_.perm[f]], 0.0f);
+        implicit_.apply(residual, iterate);
     }
     // Commit: positions start + d into the old displacement buffer, d becomes the state.
     for_particles([&](uint32_t b, uint32_t e) {
@@ -247,60 +231,7 @@ void Cloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& kine
 }
 
 void Cloth::factor_implicit(float h) {
-    // Rows of the free particles; kinematic ones enter only through the residual.
-    const uint32_t n = topo_.particle_count;
-    const NeighbourTable& nb = topo_.nbr;
-    std::vector<int> row(n, -1);
-    implicit_.free.clear();
-    for (uint32_t i = 0; i < n; ++i)
-        if (buffers_[cur_][i].w != 0.0f) {
-            row[i] = int(implicit_.free.size());
-            implicit_.free.push_back(i);
-        }
-    const double kd_h = double(params_.damping) / h;
-    std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(implicit_.free.size() * (nb.slots + 1));
-    for (uint32_t i : implicit_.free) {
-        double diag = 1.0 / (double(buffers_[cur_][i].w) * h * h);
-        for (uint32_t s = 0; s < nb.count[i]; ++s) {
-            const uint8_t g = nb.group[size_t(i) * nb.slots + s];
-            if (g >= DRAPE_GROUP_COUNT || !(params_.stiffness[g] > 0)) continue;
-            const double k = params_.stiffness[g] + kd_h;
-            diag += k;
-            const int j = row[nb.index[size_t(i) * nb.slots + s]];
-            if (j >= 0) entries.emplace_back(row[i], j, -k);
-        }
-        entries.emplace_back(row[i], row[i], diag);
-    }
-    const int m = int(implicit_.free.size());
-    Eigen::SparseMatrix<double> a(m, m);
-    a.setFromTriplets(entries.begin(), entries.end());
-    Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(a);  // AMD ordering
-    // L in float, compressed columns with the diagonal first (Eigen's order); rows of the solve are
-    // in the factor's permuted order: free particle f is row perm[f].
-    const Eigen::SparseMatrix<double>& l = llt.matrixL().nestedExpression();
-    implicit_.col.assign(l.outerIndexPtr(), l.outerIndexPtr() + m + 1);
-    implicit_.row.assign(l.innerIndexPtr(), l.innerIndexPtr() + l.nonZeros());
-    implicit_.value.assign(l.valuePtr(), l.valuePtr() + l.nonZeros());
-    implicit_.perm.resize(m);
-    for (int f = 0; f < m; ++f) implicit_.perm[f] = uint32_t(llt.permutationP().indices()[f]);
-    implicit_.rhs.resize(m);
-    implicit_.h = h;
-}
-
-void Cloth::ImplicitSolve::solve_in_place(glm::vec3* y) const {
-    // L L^T y' = y: forward by columns, then backward (three right-hand sides in one pass each).
-    const uint32_t m = uint32_t(perm.size());
-    for (uint32_t j = 0; j < m; ++j) {
-        const glm::vec3 yj = y[j] / value[col[j]];
-        y[j] = yj;
-        for (uint32_t k = col[j] + 1; k < col[j + 1]; ++k) y[row[k]] -= value[k] * yj;
-    }
-    for (uint32_t j = m; j-- > 0;) {
-        glm::vec3 yj = y[j];
-        for (uint32_t k = col[j] + 1; k < col[j + 1]; ++k) yj -= value[k] * y[row[k]];
-        y[j] = yj / value[col[j]];
-    }
+    implicit_.factor(topo_.nbr, params_, buffers_[cur_].data(), topo_.particle_count, h);
 }
 
 template <class Fn>

@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "backend/cpu/implicit_solve.h"
 #include "backend/cpu/kernels.h"
 #include "backend/cpu/thread_pool.h"
 #include "core/interaction.h"  // colliders, drag, owner, sleep
@@ -120,19 +121,10 @@ protected:
     float h_prev_ = 1.0f;   ///< previous substep; velocity = disp / h_prev
     bool fresh_ = true;     ///< next substep is the first since positions/velocities were set
     std::vector<float> lambda_;
-    // IMPLICIT model (Cloth::implicit_substep): the substep's inertial target, and the prefactored
-    // matrix over the free particles with the substep it was built for (0: rebuild).
+    // IMPLICIT model (Cloth::implicit_substep): the substep's inertial target and the prefactored
+    // matrix (backend/cpu/implicit_solve.h).
     std::vector<Particle> target_;
-    struct ImplicitSolve {
-        float h = 0;
-        std::vector<float> key;       ///< stiffness, damping and inverse masses it was built from
-        std::vector<uint32_t> free;   ///< particle of each free row, in particle order
-        std::vector<uint32_t> perm;   ///< factor row of free particle f
-        std::vector<uint32_t> col, row;  ///< Cholesky factor L, compressed columns, diagonal first
-        std::vector<float> value;
-        std::vector<glm::vec3> rhs;   ///< scratch, one per free row
-        void solve_in_place(glm::vec3* y) const;
-    } implicit_;
+    ImplicitSolve implicit_;
     template <class KinematicAt>
     void implicit_substep(kernels::SubstepContext& c, const KinematicAt& kinematic_at);
     void factor_implicit(float h);
