@@ -25,7 +25,21 @@ precision highp int;
 uniform highp sampler2D u_x;      // position records (one vec4 each) after the last substep
 uniform highp usampler2D u_tris;  // texel i*DRAPE_TRI_SLOTS+t = incident triangle (p0, p1, p2, 0)
 uniform highp usampler2D u_info;  // per particle (neighbours, active springs, triangles, 0)
-uniform int u_tex_width;
+// GENERATED BEGIN DrapeSim (tools/abi/generate.py from tools/abi/abi.py: do not edit)
+// C++ twin: drape::gles::SimUniforms (sim_uniforms.h); std140, binding point 0.
+layout(std140) uniform DrapeSim {
+    float u_damping;            // N*s/m, drape_params.damping (eq. 2; PBD: dashpot)
+    float u_air_drag;           // 1/s, drape_params.air_drag
+    float u_h;                  // s, substep length
+    float u_jacobi_coupling;    // kJacobiCoupling (core/params.h)
+    int u_tex_width;            // texels per row of every texture
+    vec3 u_stiffness;           // drape_params.stiffness per drape_group (0: group off)
+    vec3 u_compliance;          // XPBD: 1 / (k h^2) per group, 0 where off
+    vec3 u_damping_ratio;       // XPBD: damping / (k h) per group, 0 where off
+    vec3 u_gravity;             // m/s^2, drape_params.gravity
+    vec3 u_wind;                // m/s, drape_params.wind
+};
+// GENERATED END DrapeSim
 
 in uint a_particle;               // caller vertex -> simulated particle (welding)
 #ifdef DRAPE_WRITE_POSITION

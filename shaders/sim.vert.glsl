@@ -65,22 +65,26 @@ uniform highp sampler2D u_x;        // MASS_SPRING, PREDICT, TETHER: positions x
 uniform highp sampler2D u_aux;      // MASS_SPRING, PREDICT: displacements d; CONSTRAINT: substep start x
 uniform highp usampler2D u_nbr;     // neighbour table
 uniform highp usampler2D u_info;    // per particle (count, active)
-uniform int u_tex_width;
 
-uniform float u_stiffness[3];       // GroupConstants
-uniform float u_compliance[3];
-uniform float u_damping_ratio[3];
-uniform bool u_active[3];
-uniform vec3 u_gravity;
-uniform vec3 u_wind;
-uniform float u_air_drag;
-uniform float u_damping;
-uniform float u_h;
-uniform float u_inv_hp;             // 1 / h_prev, computed on the CPU as the kernel does
-uniform float u_h_ratio;            // h / h_prev, computed on the CPU (SubstepContext::h_ratio)
-uniform float u_accel_h;
-uniform float u_jacobi_coupling;    // kJacobiCoupling
-uniform float u_along;              // kinematic path fraction at the end of this substep
+// GENERATED BEGIN DrapeSim (tools/abi/generate.py from tools/abi/abi.py: do not edit)
+// C++ twin: drape::gles::SimUniforms (sim_uniforms.h); std140, binding point 0.
+layout(std140) uniform DrapeSim {
+    float u_damping;            // N*s/m, drape_params.damping (eq. 2; PBD: dashpot)
+    float u_air_drag;           // 1/s, drape_params.air_drag
+    float u_h;                  // s, substep length
+    float u_jacobi_coupling;    // kJacobiCoupling (core/params.h)
+    int u_tex_width;            // texels per row of every texture
+    vec3 u_stiffness;           // drape_params.stiffness per drape_group (0: group off)
+    vec3 u_compliance;          // XPBD: 1 / (k h^2) per group, 0 where off
+    vec3 u_damping_ratio;       // XPBD: damping / (k h) per group, 0 where off
+    vec3 u_gravity;             // m/s^2, drape_params.gravity
+    vec3 u_wind;                // m/s, drape_params.wind
+};
+// GENERATED END DrapeSim
+// This substep's numbers (computed on the CPU as Cloth::step does, so the shader sees the same bits):
+// x = 1 / h_prev, y = h / h_prev (SubstepContext::h_ratio), z = accel_h, w = kinematic path fraction
+// at the end of the substep.
+uniform vec4 u_substep;
 
 in vec4 a_x;                        // own record: position x (MS, PREDICT) / displacement iterate
 in vec4 a_aux;                      // own: displacement d (MS, PREDICT, TETHER) or substep start x (CONSTRAINT)
@@ -174,8 +178,8 @@ vec4 fetch_aux(int j) { return texelFetch(u_aux, texel(j), 0); }             // 
 uvec4 fetch_nbr(int slot) { return texelFetch(u_nbr, texel(slot), 0); }
 uvec4 fetch_info(int i) { return texelFetch(u_info, texel(i), 0); }
 
-// kernels::active_slot
-bool active_group(uint g) { return g < 3u && u_active[g]; }
+// kernels::active_slot: a group is on where its stiffness is
+bool active_group(uint g) { return g < 3u && u_stiffness[g] > 0.0; }
 
 // kernels::direction: unit vector and length; zero vector for a zero-length spring.
 vec3 direction(vec3 d, out float len) {
@@ -244,7 +248,7 @@ float shape_distance(int shape, vec3 size, vec3 p, out vec3 n) {
 #ifdef DRAPE_KINEMATIC
 // Kinematic particles move along a straight line from their start to their target (Cloth::step
 // kinematic_at).
-vec3 kinematic_at() { return a_kstart + (a_ktarget - a_kstart) * u_along; }
+vec3 kinematic_at() { return a_kstart + (a_ktarget - a_kstart) * u_substep.w; }
 #endif
 
 void main() {
@@ -368,20 +372,20 @@ void main() {
 #endif
         return;
     }
-    vec3 vi = a_aux.xyz * u_inv_hp;
+    vec3 vi = a_aux.xyz * u_substep.x;
     vec3 force = vec3(0.0);
     for (int s = 0; s < count; ++s) {
         uvec4 nb = fetch_nbr(row + s);
         if (!active_group(nb.z)) continue;
         int j = int(nb.x);
-        vec3 vj = fetch_aux(j).xyz * u_inv_hp;
+        vec3 vj = fetch_aux(j).xyz * u_substep.x;
         float len;
         vec3 n = direction(xi - fetch_x(j).xyz, len);
         float k = u_stiffness[nb.z];
         force += (-k * (len - uintBitsToFloat(nb.y)) - u_damping * dot(vi - vj, n)) * n;
     }
     vec3 a = wi * force + external_accel(vi);
-    vec3 dn = a_aux.xyz * u_h_ratio + a * (u_h * u_accel_h);
+    vec3 dn = a_aux.xyz * u_substep.y + a * (u_h * u_substep.z);
     v_x = vec4(xi + dn, wi);
     v_d = vec4(dn, wi);
 
@@ -389,7 +393,7 @@ void main() {
     // kernels::predict<kDashpot>
     vec3 dn = vec3(0.0);
     if (wi != 0.0) {
-        vec3 vi = a_aux.xyz * u_inv_hp;
+        vec3 vi = a_aux.xyz * u_substep.x;
         vec3 a = external_accel(vi);
 #ifdef DRAPE_DASHPOT
         vec3 force = vec3(0.0);
@@ -399,7 +403,7 @@ void main() {
             if (!active_group(nb.z)) continue;
             int j = int(nb.x);
             vec4 rj = fetch_x(j);
-            vec3 vj = fetch_aux(j).xyz * u_inv_hp;
+            vec3 vj = fetch_aux(j).xyz * u_substep.x;
             float len;
             vec3 n = direction(xi - rj.xyz, len);
             float limit = 1.0 / (u_h * (wi * ci + rj.w * float(fetch_info(j).y)));
@@ -407,7 +411,7 @@ void main() {
         }
         a += wi * force;
 #endif
-        dn = a_aux.xyz * u_h_ratio + a * (u_h * u_accel_h);
+        dn = a_aux.xyz * u_substep.y + a * (u_h * u_substep.z);
     }
 #ifdef DRAPE_KINEMATIC
     // Cloth::step: the kinematic displacement of this substep, kinematic_at - x

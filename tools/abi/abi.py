@@ -3,7 +3,9 @@
 #   - the enum and struct blocks of plugin-native/include/drape/drape.h (between GENERATED markers),
 #   - the C# twins unity-package/Runtime/Core/Enums.cs and Structs.cs,
 #   - the layout probe tests/dotnet/LayoutProbe/drape_layout_probe.c,
-#   - plugin-native/src/core/abi_tables.h: shipped struct sizes, defaults, range validation.
+#   - plugin-native/src/core/abi_tables.h: shipped struct sizes, defaults, range validation,
+#   - the GLES uniform block (UNIFORM_BLOCK, at the end): its GLSL declaration in the shaders
+#     (between GENERATED markers) and its C++ twin plugin-native/src/backend/gles/sim_uniforms.h.
 # Edit here, then run `python3 tools/abi/generate.py`; `--check` (a ctest) fails on stale output.
 #
 # Field types: u32, i32, f32, and arrays of them as "f32[3]"; "const f32*", "const u32*" pointers.
@@ -268,3 +270,31 @@ STRUCTS = [
                field("stable", "u32", "1 if substeps >= stable_substeps"),
            ]),
 ]
+
+
+# ---- GLES uniform block ---------------------------------------------------------------------------
+# What every GLES pass reads that changes only with the parameters, the substep length or the cloth's
+# origin: one std140 uniform block shared by all programs (one binding point), uploaded when a value
+# changes instead of set per program and pass. generate.py writes its GLSL declaration into each
+# shader that reads it (between GENERATED markers) and its C++ twin, the struct drape::gles::<cpp> in
+# plugin-native/src/backend/gles/sim_uniforms.h (offsets checked by static_assert). Members are
+# u_<name> in GLSL. Types: float, int, vec3 (std140: scalars aligned to 4 bytes, vec3 to 16); scalars
+# come first so none shares a vec3's last word (a layout some mobile drivers get wrong).
+
+def ufield(name, type, doc="", unit=None):
+    return dict(name=name, type=type, doc=doc, unit=unit)
+
+
+UNIFORM_BLOCK = dict(glsl="DrapeSim", cpp="SimUniforms", binding=0,
+                     shaders=["shaders/sim.vert.glsl", "shaders/output.vert.glsl"], fields=[
+    ufield("damping", "float", "drape_params.damping (eq. 2; PBD: dashpot)", unit="N*s/m"),
+    ufield("air_drag", "float", "drape_params.air_drag", unit="1/s"),
+    ufield("h", "float", "substep length", unit="s"),
+    ufield("jacobi_coupling", "float", "kJacobiCoupling (core/params.h)"),
+    ufield("tex_width", "int", "texels per row of every texture"),
+    ufield("stiffness", "vec3", "drape_params.stiffness per drape_group (0: group off)"),
+    ufield("compliance", "vec3", "XPBD: 1 / (k h^2) per group, 0 where off"),
+    ufield("damping_ratio", "vec3", "XPBD: damping / (k h) per group, 0 where off"),
+    ufield("gravity", "vec3", "drape_params.gravity", unit="m/s^2"),
+    ufield("wind", "vec3", "drape_params.wind", unit="m/s"),
+])

@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 
 #include "backend/gles/shaders.h"  // generated from shaders/*.glsl
+#include "backend/gles/sim_uniforms.h"  // generated from tools/abi/abi.py
 #include "core/params.h"
 
 namespace drape::gles {
@@ -25,21 +26,21 @@ constexpr uint32_t kTexWidth = 1024;
 constexpr uint32_t kMaxLambdaVec4 = 8;
 
 enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3, kTether = 4, kInteract = 5 };  // kCommit: last iteration
-enum Uniform {
-    uX, uAux, uNbr, uInfo, uTexWidth, uStiffness, uCompliance, uDampingRatio, uActive, uGravity, uWind, uAirDrag,
-    uDamping, uH, uInvHp, uAccelH, uCoupling, uAlong, uTris, uHRatio, uShapes, uShapeCount, kUniformCount
-};
-const char* const kUniformNames[kUniformCount] = {
-    "u_x", "u_aux", "u_nbr", "u_info", "u_tex_width", "u_stiffness", "u_compliance", "u_damping_ratio", "u_active",
-    "u_gravity", "u_wind", "u_air_drag", "u_damping", "u_h", "u_inv_hp", "u_accel_h", "u_jacobi_coupling",
-    "u_along", "u_tris", "u_h_ratio", "u_shapes", "u_shape_count"};
+// Uniforms outside the DrapeSim block (sim_uniforms.h): per substep or per collider set.
+enum Uniform { uSubstep, uShapes, uShapeCount, kUniformCount };
+const char* const kUniformNames[kUniformCount] = {"u_substep", "u_shapes", "u_shape_count"};
 // Attribute locations (bound before linking).
 enum Attrib {
     aX = 0, aAux = 1, aKStart = 2, aKTarget = 3, aLambda0 = 4, aTetherAnchor = 12, aTetherLength = 13, aDrag = 14,
     aParticle = 0, aKeep0 = 1
 };
 constexpr int kMaxAttribs = 16;
-// Texture units: 0 u_x, 1 u_aux, 2 u_nbr, 3 u_info, 4 u_tris, 5 scratch unit for refreshes.
+// Texture units, fixed per sampler (set once when a program is linked); 5 is the scratch unit for
+// refreshes.
+constexpr struct {
+    const char* name;
+    GLint unit;
+} kSamplers[] = {{"u_x", 0}, {"u_aux", 1}, {"u_nbr", 2}, {"u_info", 3}, {"u_tris", 4}};
 constexpr int kRefreshUnit = 5;
 
 std::atomic<bool> g_render_device{false};
@@ -70,8 +71,8 @@ void delete_now(GlObjects& o) {
     glDeleteTextures(4, o.textures);
     GLuint tex[3] = {o.nbr_tex, o.info_tex, o.tri_tex};
     glDeleteTextures(3, tex);
-    GLuint bufs[6] = {o.kstart, o.targets, o.vertex_to_particle, o.scratch, o.tethers, o.drag};
-    glDeleteBuffers(6, bufs);
+    GLuint bufs[7] = {o.kstart, o.targets, o.vertex_to_particle, o.scratch, o.tethers, o.drag, o.uniforms};
+    glDeleteBuffers(7, bufs);
     if (o.vao) glDeleteVertexArrays(1, &o.vao);
     if (o.fbo) glDeleteFramebuffers(1, &o.fbo);
     if (o.rbo) glDeleteRenderbuffers(1, &o.rbo);
@@ -111,6 +112,7 @@ Result gl_error(const char* where) {
 /// Saves the GL state a step touches and restores it (Unity caches GL state).
 struct StateGuard {
     GLint program, vao, array_buffer, unpack, copy_read, copy_write, tf_buffer, draw_fbo, active_tex;
+    GLint uniform_buffer, block_buffer, block_start, block_size;  // generic and DrapeSim's indexed binding
     GLint tex[6];
     GLboolean discard;
     StateGuard() {
@@ -123,6 +125,10 @@ struct StateGuard {
         glGetIntegerv(GL_TRANSFORM_FEEDBACK_BUFFER_BINDING, &tf_buffer);
         glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_fbo);
         glGetIntegerv(GL_ACTIVE_TEXTURE, &active_tex);
+        glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &uniform_buffer);
+        glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, kSimUniformsBinding, &block_buffer);
+        glGetIntegeri_v(GL_UNIFORM_BUFFER_START, kSimUniformsBinding, &block_start);
+        glGetIntegeri_v(GL_UNIFORM_BUFFER_SIZE, kSimUniformsBinding, &block_size);
         for (int u = 0; u < 6; ++u) {
             glActiveTexture(GL_TEXTURE0 + GLenum(u));
             glGetIntegerv(GL_TEXTURE_BINDING_2D, &tex[u]);
@@ -137,6 +143,11 @@ struct StateGuard {
         glActiveTexture(GLenum(active_tex));
         if (discard) glEnable(GL_RASTERIZER_DISCARD); else glDisable(GL_RASTERIZER_DISCARD);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_fbo));
+        if (block_size > 0)
+            glBindBufferRange(GL_UNIFORM_BUFFER, kSimUniformsBinding, GLuint(block_buffer), block_start, block_size);
+        else
+            glBindBufferBase(GL_UNIFORM_BUFFER, kSimUniformsBinding, GLuint(block_buffer));
+        glBindBuffer(GL_UNIFORM_BUFFER, GLuint(uniform_buffer));
         glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, GLuint(tf_buffer));
         glBindBuffer(GL_COPY_WRITE_BUFFER, GLuint(copy_write));
         glBindBuffer(GL_COPY_READ_BUFFER, GLuint(copy_read));
@@ -197,6 +208,12 @@ Result link(const std::string& vs_source, const char* name, const std::vector<st
         glDeleteProgram(p);
         return {DRAPE_ERROR_GL, std::string("linking ") + name + " failed: " + log};
     }
+    // What never changes for this program: sampler units and the uniform block's binding point.
+    glUseProgram(p);
+    for (const auto& s : kSamplers)
+        if (const GLint at = glGetUniformLocation(p, s.name); at >= 0) glUniform1i(at, s.unit);
+    if (const GLuint block = glGetUniformBlockIndex(p, kSimUniformsName); block != GL_INVALID_INDEX)
+        glUniformBlockBinding(p, block, kSimUniformsBinding);
     *out = p;
     return {};
 }
@@ -337,6 +354,11 @@ Result GlesCloth::ensure_gl() {
     glGenBuffers(1, &gl_.kstart);
     glGenBuffers(1, &gl_.tethers);
     glGenBuffers(1, &gl_.drag);
+    glGenBuffers(1, &gl_.uniforms);
+    glBindBuffer(GL_UNIFORM_BUFFER, gl_.uniforms);
+    glBufferData(GL_UNIFORM_BUFFER, sizeof(SimUniforms), nullptr, GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_UNIFORM_BUFFER, 0);
+    uniforms_uploaded_ = false;
     tethers_uploaded_.clear();
     // Static tables.
     const NeighbourTable& nb = topo_.nbr;
@@ -620,33 +642,39 @@ Result GlesCloth::output_program(Program** out) {
     return {};
 }
 
-void GlesCloth::run_pass(Program& p, int x, int aux, int out, int out2, bool constraint, float along,
-                         const float* sub) {
+void GlesCloth::use_uniforms(float h) {
+    SimUniforms u{};
+    u.damping = params_.damping;
+    u.air_drag = params_.air_drag;
+    u.h = h;
+    u.jacobi_coupling = kJacobiCoupling;
+    u.tex_width = GLint(kTexWidth);
+    for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) {
+        const float k = params_.stiffness[g];  // as Cloth::step computes them
+        u.stiffness[g] = k;
+        u.compliance[g] = k > 0 ? 1.0f / (k * h * h) : 0.0f;
+        u.damping_ratio[g] = k > 0 ? params_.damping / (k * h) : 0.0f;
+    }
+    for (int k = 0; k < 3; ++k) {
+        u.gravity[k] = params_.gravity[k];
+        u.wind[k] = params_.wind[k];
+    }
+    if (!uniforms_uploaded_ || std::memcmp(&u, &uniforms_, sizeof u) != 0) {
+        glBindBuffer(GL_UNIFORM_BUFFER, gl_.uniforms);
+        glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof u, &u);
+        uniforms_ = u;
+        uniforms_uploaded_ = true;
+    }
+    glBindBufferBase(GL_UNIFORM_BUFFER, kSimUniformsBinding, gl_.uniforms);
+}
+
+void GlesCloth::run_pass(Program& p, int x, int aux, int out, int out2, bool constraint, const glm::vec4& sub) {
     const uint32_t n = topo_.particle_count;
     constexpr GLsizei kState = GLsizei(sizeof(Particle));             // x, d, substep start, kstart
     const GLsizei iterate = GLsizei(record_ * sizeof(Particle));      // displacement iterates
     const GLsizei stride = constraint ? iterate : kState;              // a_x's buffer
     glUseProgram(p.id);
-    glUniform1i(p.u[uX], 0);
-    glUniform1i(p.u[uAux], 1);
-    glUniform1i(p.u[uNbr], 2);
-    glUniform1i(p.u[uInfo], 3);
-    glUniform1i(p.u[uTexWidth], GLint(kTexWidth));
-    glUniform1fv(p.u[uStiffness], 3, sub + 0);
-    glUniform1fv(p.u[uCompliance], 3, sub + 3);
-    glUniform1fv(p.u[uDampingRatio], 3, sub + 6);
-    const GLint active[3] = {sub[0] > 0, sub[1] > 0, sub[2] > 0};
-    glUniform1iv(p.u[uActive], 3, active);
-    glUniform3fv(p.u[uGravity], 1, params_.gravity);
-    glUniform3fv(p.u[uWind], 1, params_.wind);
-    glUniform1f(p.u[uAirDrag], params_.air_drag);
-    glUniform1f(p.u[uDamping], params_.damping);
-    glUniform1f(p.u[uH], sub[9]);
-    glUniform1f(p.u[uInvHp], sub[10]);
-    glUniform1f(p.u[uHRatio], sub[12]);
-    glUniform1f(p.u[uAccelH], sub[11]);
-    glUniform1f(p.u[uCoupling], kJacobiCoupling);
-    glUniform1f(p.u[uAlong], along);
+    glUniform4fv(p.u[uSubstep], 1, &sub.x);
 
     glBindVertexArray(gl_.vao);
     for (int a = 0; a < kMaxAttribs; ++a) glDisableVertexAttribArray(GLuint(a));
@@ -695,8 +723,6 @@ void GlesCloth::run_tether(Program& p, int x, int d, int out_x, int out_d) {
     const uint32_t n = topo_.particle_count;
     constexpr GLsizei kState = GLsizei(sizeof(Particle));
     glUseProgram(p.id);
-    glUniform1i(p.u[uX], 0);
-    glUniform1i(p.u[uTexWidth], GLint(kTexWidth));
     glBindVertexArray(gl_.vao);
     for (int a = 0; a < kMaxAttribs; ++a) glDisableVertexAttribArray(GLuint(a));
     glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[x]);
@@ -873,8 +899,6 @@ Result GlesCloth::gpu_step(float dt) {
         glBindBuffer(GL_COPY_WRITE_BUFFER, gl_.kstart);
         glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, GLsizeiptr(size_t(n) * sizeof(Particle)));
     }
-    // sub: stiffness[3], compliance[3], damping_ratio[3], h, 1/h_prev, accel_h, h/h_prev
-    // (computed on the CPU exactly as Cloth::step does, so the shader sees the same bits).
     if (dragging) {
         // This step's drag share per particle (Cloth::interaction_substep: offset / substeps).
         const float part = 1.0f / float(substeps);
@@ -884,39 +908,31 @@ Result GlesCloth::gpu_step(float dt) {
         glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n * sizeof(glm::vec3)), drag_share_.data(), GL_STREAM_DRAW);
         glBindBuffer(GL_ARRAY_BUFFER, 0);
     }
-    float sub[13];
-    for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) {
-        const float k = params_.stiffness[g];
-        sub[g] = k;
-        sub[3 + g] = k > 0 ? 1.0f / (k * h * h) : 0.0f;
-        sub[6 + g] = k > 0 ? params_.damping / (k * h) : 0.0f;
-    }
-    sub[9] = h;
+    use_uniforms(h);
     // Buffer roles as Cloth::step: cur (positions x), disp (displacements d), spare, spare2.
     int& cur = g_[0];
     int& disp = g_[1];
     int& spare = g_[2];
     int& spare2 = g_[3];
     for (uint32_t s = 0; s < substeps; ++s) {
-        sub[10] = 1.0f / h_prev_;
-        sub[11] = fresh_ ? 0.5f * h : 0.5f * (h + h_prev_);
-        sub[12] = h / h_prev_;
-        const float along = float(s + 1) / float(substeps);
+        // Computed on the CPU exactly as Cloth::step does, so the shader sees the same bits.
+        const glm::vec4 sub(1.0f / h_prev_, h / h_prev_, fresh_ ? 0.5f * h : 0.5f * (h + h_prev_),
+                            float(s + 1) / float(substeps));
         if (model == DRAPE_MODEL_MASS_SPRING) {
             // x -> spare, d -> spare2 (kinematic particles placed in the same pass).
-            run_pass(*p_first, cur, disp, spare, spare2, false, along, sub);
+            run_pass(*p_first, cur, disp, spare, spare2, false, sub);
             std::swap(cur, spare);
             std::swap(disp, spare2);
         } else {
             // predict: displacements into spare; iterate spare <-> spare2; the last iteration
             // also writes positions, into the displacement buffer (free after predict).
-            run_pass(*p_first, cur, disp, spare, -1, false, along, sub);
+            run_pass(*p_first, cur, disp, spare, -1, false, sub);
             int in = spare, out = spare2;
             for (uint32_t it = 0; it < iterations_for(); ++it) {
                 if (it + 1 == iterations_for())
-                    run_pass(*p_commit, in, cur, disp, out, true, along, sub);  // x -> disp, d -> out
+                    run_pass(*p_commit, in, cur, disp, out, true, sub);  // x -> disp, d -> out
                 else
-                    run_pass(*p_constraint, in, cur, out, -1, true, along, sub);
+                    run_pass(*p_constraint, in, cur, out, -1, true, sub);
                 std::swap(in, out);
             }
             // Positions went to the old displacement buffer, displacements to `in`.
@@ -984,11 +1000,8 @@ Result GlesCloth::write_output() {
         glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, bytes);
     }
     glEnable(GL_RASTERIZER_DISCARD);
+    use_uniforms(uniforms_.h);
     glUseProgram(p->id);
-    glUniform1i(p->u[uX], 0);
-    glUniform1i(p->u[uInfo], 3);
-    glUniform1i(p->u[uTris], 4);
-    glUniform1i(p->u[uTexWidth], GLint(kTexWidth));
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, gl_.textures[g_[0]]);
     glActiveTexture(GL_TEXTURE3);

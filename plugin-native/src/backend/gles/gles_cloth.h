@@ -24,6 +24,7 @@
 #pragma once
 
 #include "backend/gles/gl_loader.h"  // GL ES 3.0 + EGL, loaded at run time
+#include "backend/gles/sim_uniforms.h"  // generated from tools/abi/abi.py
 
 #include <deque>
 #include <functional>
@@ -53,6 +54,7 @@ struct GlObjects {
     GLuint textures[4] = {};
     GLuint nbr_tex = 0, info_tex = 0, tri_tex = 0;
     GLuint kstart = 0, targets = 0, vertex_to_particle = 0, scratch = 0, tethers = 0, drag = 0;
+    GLuint uniforms = 0;  ///< the DrapeSim uniform block (SimUniforms)
     GLuint vao = 0, fbo = 0, rbo = 0;
     std::vector<GLuint> programs;
     void* context = nullptr;  ///< EGLContext they were made in
@@ -103,7 +105,7 @@ private:
     };
     struct Program {
         GLuint id = 0;
-        GLint u[24] = {};
+        GLint u[3] = {};  ///< locations of kUniformNames (gles_cloth.cpp)
     };
 
     Result ensure_gl();
@@ -116,9 +118,11 @@ private:
     void refresh_texture(int b);
     Result program(int pass, Program** out);
     Result output_program(Program** out);
+    /// Uploads the DrapeSim block when a value changed (parameters, substep h) and binds it.
+    void use_uniforms(float h);
     /// One transform-feedback pass over the particles: reads buffers x and aux, writes `out` (and
-    /// `out2` >= 0 for the two-output passes: out gets v_x, out2 v_d).
-    void run_pass(Program& p, int x, int aux, int out, int out2, bool constraint, float along, const float* sub);
+    /// `out2` >= 0 for the two-output passes: out gets v_x, out2 v_d). sub: u_substep.
+    void run_pass(Program& p, int x, int aux, int out, int out2, bool constraint, const glm::vec4& sub);
     /// kernels::tether: reads state buffers x and d, writes them to out_x and out_d.
     void run_tether(Program& p, int x, int d, int out_x, int out_d);
     bool has_tethers() const { return params_.max_stretch > 0 && !kinematic_.empty(); }
@@ -155,6 +159,8 @@ private:
     drape_vertex_layout out_layout_{};
     std::vector<std::pair<int, int>> keeps_;  // (first word, words) of passthrough chunks
     std::vector<uint32_t> tethers_uploaded_;  // (anchor, length bits) per particle in gl_.tethers
+    SimUniforms uniforms_{};          // DrapeSim as last uploaded
+    bool uniforms_uploaded_ = false;  // uniforms_ is in gl_.uniforms
     uint32_t shape_capacity_ = 0;  // DRAPE_SHAPES of the interaction program being asked for
     bool drag_variant_ = false;    // DRAPE_DRAG of the interaction program being asked for
     std::vector<float> shape_data_;
