@@ -3,6 +3,7 @@
 // object unchanged.
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -12,16 +13,14 @@
 #include <unordered_map>
 #include <vector>
 
-#include "core/cloth.h"
 #include "api/last_error.h"
+#include "backend/backends.h"
+#include "core/cloth.h"
 #include "core/drag.h"
 #include "core/abi_tables.h"
 #include "core/params.h"
 #include "core/topology.h"
 #include "drape/drape.h"
-#ifdef DRAPE_WITH_GLES
-#include "backend/gles/gles_cloth.h"
-#endif
 
 using namespace drape;
 
@@ -38,6 +37,8 @@ drape_status ok() {
     t_last_error.clear();
     return DRAPE_OK;
 }
+
+drape_status status_of(const Result& r) { return r.ok() ? ok() : fail(r.status, r.message); }
 
 // Handles are ids, not addresses (Box2D v3's b2BodyId): a slot index, the object kind and the
 // slot's generation packed into a pointer-sized value. Destroying an object bumps its slot's
@@ -240,38 +241,18 @@ drape_status check_cloth_desc(const drape_cloth_desc* desc, bool need_available 
     std::string problem;  // backend enum, total_mass finite and in (0, 1e6] kg (tools/abi/abi.py)
     if (drape_status s = abi::Layout<drape_cloth_desc>::check(*desc, &problem)) return fail(s, problem);
     if (!need_available) return DRAPE_OK;
-    uint32_t available = 0;
-    drape_backend_available(desc->backend, &available);
-#ifdef DRAPE_WITH_GLES
-    std::string why;
-    DRAPE_REQUIRE(available || desc->backend != DRAPE_BACKEND_GLES || (gles::context_current(&why), false),
-                  DRAPE_ERROR_BACKEND_UNAVAILABLE,
-                  "backend GLES needs an OpenGL ES 3 context current on the calling thread (or a Unity "
-                  "OpenGLES3 device): " + why);
-#endif
-    DRAPE_REQUIRE(available, DRAPE_ERROR_BACKEND_UNAVAILABLE,
-                  "backend " + std::to_string(desc->backend) + " is not available in this build or on this thread");
-    return DRAPE_OK;
+    return status_of(backend_available(drape_backend(desc->backend)));
 }
 
-// Setters: a GLES cloth keeps its state on the GPU, so they go through GlesCloth::edit (state
-// read back first where the setter needs it; on Unity's main thread queued for the render thread).
-enum class Access { ReadsState, WritesState, NoState };
-template <class Fn>
-drape_status apply_edit(Cloth* c, Access access, Fn&& fn) {
-#ifdef DRAPE_WITH_GLES
-    if (c->backend() == DRAPE_BACKEND_GLES) {
-        const auto a = access == Access::ReadsState    ? gles::GlesCloth::Access::ReadsState
-                       : access == Access::WritesState ? gles::GlesCloth::Access::WritesState
-                                                       : gles::GlesCloth::Access::NoState;
-        Result r = static_cast<gles::GlesCloth*>(c)->edit(a, std::forward<Fn>(fn));
-        return r.ok() ? ok() : fail(r.status, r.message);
-    }
-#endif
-    (void)access;
-    fn(*c);
-    return ok();
+// Setters go through Cloth::edit: a backend whose state lives elsewhere (GLES: on the GPU) reads
+// it back first where the setter needs it, or queues the setter (Unity's main thread).
+using Access = Cloth::Access;
+drape_status apply_edit(Cloth* c, Access access, std::function<void(Cloth&)> fn) {
+    return status_of(c->edit(access, std::move(fn)));
 }
+
+// OK, or the backend's refusal of a feature it lacks.
+drape_status check_supports(const Cloth* c, Feature feature) { return status_of(c->supports(feature)); }
 
 // layout: already through DRAPE_CHECK_STRUCT.
 drape_status check_layout(const drape_vertex_layout* layout) {
@@ -297,27 +278,11 @@ drape_status check_layout(const drape_vertex_layout* layout) {
 drape_status finish_create(drape_world* world, const drape_cloth_desc* desc, Topology topo, drape_cloth** out,
                            const glm::dvec3& origin) {
     World& w = *as_world(world);
-    Cloth* cloth = nullptr;
-#ifdef DRAPE_WITH_GLES
-    if (desc->backend == DRAPE_BACKEND_GLES) {
-        // A context current here: GL work happens in the caller's calls. None (Unity main thread
-        // with an OpenGLES3 device): calls record, the render event does the GL work.
-        const bool here = gles::context_current();
-        auto* g = new gles::GlesCloth(w, std::move(topo),
-                                      here ? gles::GlesCloth::Mode::Immediate : gles::GlesCloth::Mode::RenderThread);
-        if (here) {
-            Result r = g->init_gl();
-            if (!r.ok()) {
-                delete g;
-                return fail(r.status, r.message);
-            }
-        }
-        cloth = g;
-    }
-#endif
-    if (!cloth) cloth = new Cloth(w, drape_backend(desc->backend), std::move(topo));
+    std::unique_ptr<Cloth> owned;
+    if (Result r = create_cloth(w, drape_backend(desc->backend), std::move(topo), &owned); !r.ok())
+        return fail(r.status, r.message);
+    Cloth* cloth = owned.get();
     cloth->set_origin(origin);
-    std::unique_ptr<Cloth> owned(cloth);
     w.add(cloth);
     uintptr_t handle = 0;
     try {
@@ -408,8 +373,8 @@ void xyz_to_local(const Cloth& c, std::vector<float>& xyz) {
     for (size_t v = 0; v + 2 < xyz.size(); v += 3) to_local(c, &xyz[v], &xyz[v]);
 }
 
-// Positions written by Cloth::read / GlesCloth::read_out are local: move them to the caller's
-// space, relative to layout->origin (positions - origin, computed in double).
+// Positions written by Cloth::read are local: move them to the caller's space, relative to
+// layout->origin (positions - origin, computed in double).
 void positions_out(const Cloth& c, const drape_vertex_layout& layout, void* dst) {
     const glm::dvec3 shift = c.origin() - glm::dvec3(layout.origin[0], layout.origin[1], layout.origin[2]);
     if (layout.position_offset < 0 || shift == glm::dvec3(0.0)) return;
@@ -439,10 +404,7 @@ drape_status drape_backend_available(uint32_t backend, uint32_t* out_available) 
     DRAPE_REQUIRE(out_available != nullptr, DRAPE_ERROR_NULL_POINTER, "out_available is NULL");
     DRAPE_REQUIRE(backend <= DRAPE_BACKEND_GLES, DRAPE_ERROR_INVALID_ENUM,
                   "backend " + std::to_string(backend) + " is not a drape_backend");
-    *out_available = backend == DRAPE_BACKEND_CPU || backend == DRAPE_BACKEND_CPU_THREADED;
-#ifdef DRAPE_WITH_GLES
-    if (backend == DRAPE_BACKEND_GLES) *out_available = gles::context_current() || gles::render_thread_device_ready();
-#endif
+    *out_available = backend_available(drape_backend(backend)).ok() ? 1 : 0;
     return ok();
 }
 
@@ -483,10 +445,7 @@ drape_status drape_world_step(drape_world* world, float dt) {
     DRAPE_REQUIRE(std::isfinite(dt), DRAPE_ERROR_NOT_FINITE, "dt is NaN or infinite");
     DRAPE_REQUIRE(dt > 0 && dt <= DRAPE_MAX_DT, DRAPE_ERROR_INVALID_ARGUMENT, "dt must be in (0, 1] s");
     if (dt < DRAPE_MIN_DT) return ok();  // too short to represent: a no-op (drape.h)
-    return guarded([&] {
-        Result r = as_world(world)->step(dt);
-        return r.ok() ? ok() : fail(r.status, r.message);
-    });
+    return guarded([&] { return status_of(as_world(world)->step(dt)); });
 }
 
 drape_status drape_cloth_create_grid(drape_world* world, const drape_cloth_desc* desc, const drape_grid_desc* grid,
@@ -547,10 +506,8 @@ drape_status drape_cloth_set_params(drape_cloth* cloth, const drape_params* para
     drape_status status;
     std::string problem = validate_params(*params, &status);
     if (status != DRAPE_OK) return fail(status, problem);
-    DRAPE_REQUIRE(params->model != DRAPE_MODEL_IMPLICIT || as_cloth(cloth)->backend() != DRAPE_BACKEND_GLES,
-                  DRAPE_ERROR_BACKEND_UNAVAILABLE,
-                  "model IMPLICIT runs on the CPU backends only (its sparse Cholesky solve has no GLES form yet); "
-                  "GLES runs MASS_SPRING, PBD and XPBD");
+    if (params->model == DRAPE_MODEL_IMPLICIT)
+        if (drape_status s = check_supports(as_cloth(cloth), Feature::ImplicitModel)) return s;
     const drape_params p = *params;
     return guarded([&] { return apply_edit(as_cloth(cloth), Access::NoState, [p](Cloth& c) { c.set_params(p); }); });
 }
@@ -645,10 +602,7 @@ drape_status drape_cloth_step(drape_cloth* cloth, float dt) {
     DRAPE_REQUIRE(std::isfinite(dt), DRAPE_ERROR_NOT_FINITE, "dt is NaN or infinite");
     DRAPE_REQUIRE(dt > 0 && dt <= DRAPE_MAX_DT, DRAPE_ERROR_INVALID_ARGUMENT, "dt must be in (0, 1] s");
     if (dt < DRAPE_MIN_DT) return ok();  // too short to represent: a no-op (drape.h)
-    return guarded([&] {
-        Result r = as_cloth(cloth)->step(dt);
-        return r.ok() ? ok() : fail(r.status, r.message);
-    });
+    return guarded([&] { return status_of(as_cloth(cloth)->step(dt)); });
 }
 
 drape_status drape_cloth_read(const drape_cloth* cloth, const drape_vertex_layout* layout, void* dst,
@@ -661,16 +615,9 @@ drape_status drape_cloth_read(const drape_cloth* cloth, const drape_vertex_layou
     DRAPE_REQUIRE(dst_size >= needed, DRAPE_ERROR_BUFFER_TOO_SMALL,
                   "dst_size is " + std::to_string(dst_size) + " bytes, the layout needs " + std::to_string(needed));
     return guarded([&] {
-#ifdef DRAPE_WITH_GLES
-        if (as_cloth(cloth)->backend() == DRAPE_BACKEND_GLES) {
-            Result r = static_cast<gles::GlesCloth*>(const_cast<Cloth*>(as_cloth(cloth)))->read_out(*layout, dst);
-            if (r.ok()) positions_out(*as_cloth(cloth), *layout, dst);
-            return r.ok() ? ok() : fail(r.status, r.message);
-        }
-#endif
-        as_cloth(cloth)->read(*layout, dst);
-        positions_out(*as_cloth(cloth), *layout, dst);
-        return ok();
+        Result r = as_cloth(cloth)->read(*layout, dst);
+        if (r.ok()) positions_out(*as_cloth(cloth), *layout, dst);
+        return status_of(r);
     });
 }
 
@@ -698,17 +645,9 @@ drape_status drape_cloth_get_stats(const drape_cloth* cloth, drape_stats* out_st
     return guarded([&] {
         drape_stats full{};
         full.struct_size = sizeof full;
-        auto copy_out = [&] { write_out(full, out_stats, size); };
-#ifdef DRAPE_WITH_GLES
-        if (as_cloth(cloth)->backend() == DRAPE_BACKEND_GLES) {
-            Result r = static_cast<gles::GlesCloth*>(const_cast<Cloth*>(as_cloth(cloth)))->stats_out(&full);
-            if (r.ok()) copy_out();
-            return r.ok() ? ok() : fail(r.status, r.message);
-        }
-#endif
-        as_cloth(cloth)->stats(&full);
-        copy_out();
-        return ok();
+        Result r = as_cloth(cloth)->stats(&full);
+        if (r.ok()) write_out(full, out_stats, size);
+        return status_of(r);
     });
 }
 
@@ -771,30 +710,13 @@ drape_status drape_cloth_set_output_buffer(drape_cloth* cloth, uint32_t gl_buffe
                       DRAPE_ERROR_INVALID_ARGUMENT,
                       "layout->origin must be 0 for a GL output buffer (the GPU writes simulation space)");
     }
-    DRAPE_REQUIRE(as_cloth(cloth)->backend() == DRAPE_BACKEND_GLES, DRAPE_ERROR_INVALID_ARGUMENT,
-                  "an output GL buffer needs a GLES cloth; use drape_cloth_read for CPU cloths");
-#ifdef DRAPE_WITH_GLES
     const drape_vertex_layout l = layout ? *layout : drape_vertex_layout{sizeof(drape_vertex_layout), 12, 0, -1, {0, 0, 0}};
-    return guarded([&] {
-        Result r = static_cast<gles::GlesCloth*>(as_cloth(cloth))->set_output(gl_buffer, l);
-        return r.ok() ? ok() : fail(r.status, r.message);
-    });
-#else
-    return fail(DRAPE_ERROR_BACKEND_UNAVAILABLE, "built without GLES");
-#endif
+    return guarded([&] { return status_of(as_cloth(cloth)->set_output(gl_buffer, l)); });
 }
 
 drape_status drape_cloth_readback(drape_cloth* cloth) {
     if (drape_status s = check_cloth(cloth)) return s;
-    if (as_cloth(cloth)->backend() != DRAPE_BACKEND_GLES) return ok();  // CPU state is always current
-#ifdef DRAPE_WITH_GLES
-    return guarded([&] {
-        Result r = static_cast<gles::GlesCloth*>(as_cloth(cloth))->readback();
-        return r.ok() ? ok() : fail(r.status, r.message);
-    });
-#else
-    return ok();
-#endif
+    return guarded([&] { return status_of(as_cloth(cloth)->readback()); });
 }
 
 }  // extern "C"
@@ -822,11 +744,9 @@ drape_status check_unit_quat(const float* q, const std::string& what) {
     return DRAPE_OK;
 }
 
-drape_status check_cpu_cloth(const drape_cloth* cloth, const char* what) {
+drape_status check_cloth_supports(const drape_cloth* cloth, Feature feature) {
     if (drape_status s = check_cloth(cloth)) return s;
-    DRAPE_REQUIRE(as_cloth(cloth)->backend() != DRAPE_BACKEND_GLES, DRAPE_ERROR_BACKEND_UNAVAILABLE,
-                  std::string(what) + " is not implemented on the GLES backend yet (CPU backends only)");
-    return DRAPE_OK;
+    return check_supports(as_cloth(cloth), feature);
 }
 
 drape_status check_collider(const drape_collider& c, uint32_t k) {
@@ -905,7 +825,7 @@ drape_status drape_cloth_set_colliders(drape_cloth* cloth, const drape_collider*
 }
 
 drape_status drape_cloth_set_sleep(drape_cloth* cloth, const drape_sleep_desc* desc) {
-    if (drape_status s = check_cpu_cloth(cloth, "sleeping")) return s;
+    if (drape_status s = check_cloth_supports(cloth, Feature::Sleep)) return s;
     DRAPE_CHECK_STRUCT(desc, drape_sleep_desc);
     std::string problem;
     if (drape_status s = abi::Layout<drape_sleep_desc>::check(*desc, &problem)) return fail(s, "sleep " + problem);
@@ -954,7 +874,7 @@ drape_status drape_cloth_drag(drape_cloth* cloth, const drape_view* view, const 
 
 drape_status drape_cloth_grab(drape_cloth* cloth, const drape_view* view, uint32_t touch_id, const float position[2],
                               float pick_radius, uint32_t* out_vertex) {
-    if (drape_status s = check_cpu_cloth(cloth, "grab")) return s;
+    if (drape_status s = check_cloth_supports(cloth, Feature::Grab)) return s;
     DRAPE_CHECK_STRUCT(view, drape_view);
     if (drape_status s = check_view(view)) return s;
     if (drape_status s = check_screen_point(position, "position")) return s;
@@ -974,7 +894,7 @@ drape_status drape_cloth_grab(drape_cloth* cloth, const drape_view* view, uint32
 
 drape_status drape_cloth_grab_move(drape_cloth* cloth, const drape_view* view, uint32_t touch_id,
                                    const float position[2]) {
-    if (drape_status s = check_cpu_cloth(cloth, "grab")) return s;
+    if (drape_status s = check_cloth_supports(cloth, Feature::Grab)) return s;
     DRAPE_CHECK_STRUCT(view, drape_view);
     if (drape_status s = check_view(view)) return s;
     if (drape_status s = check_screen_point(position, "position")) return s;
@@ -988,7 +908,7 @@ drape_status drape_cloth_grab_move(drape_cloth* cloth, const drape_view* view, u
 }
 
 drape_status drape_cloth_grab_release(drape_cloth* cloth, uint32_t touch_id) {
-    if (drape_status s = check_cpu_cloth(cloth, "grab")) return s;
+    if (drape_status s = check_cloth_supports(cloth, Feature::Grab)) return s;
     return guarded([&] {
         as_cloth(cloth)->grab_release(touch_id);
         return ok();
@@ -1002,7 +922,7 @@ drape_status drape_owner_default(drape_owner* out_owner) {
 }
 
 drape_status drape_cloth_set_owner(drape_cloth* cloth, const drape_owner* owner) {
-    if (drape_status s = check_cpu_cloth(cloth, "owner transform")) return s;
+    if (drape_status s = check_cloth_supports(cloth, Feature::Owner)) return s;
     DRAPE_CHECK_STRUCT(owner, drape_owner);
     std::string problem;
     if (drape_status s = abi::Layout<drape_owner>::check(*owner, &problem)) return fail(s, "owner " + problem);
@@ -1037,12 +957,8 @@ drape_status drape_cloth_set_self_collision(drape_cloth* cloth, const drape_self
                   "self-collision thickness must be > 0 m when enabled");
     DRAPE_REQUIRE(desc->friction >= 0 && desc->friction <= kMaxFriction, DRAPE_ERROR_INVALID_ARGUMENT,
                   "self-collision friction must be in [0, 10]");
-    if (c->backend() == DRAPE_BACKEND_GLES) {
-        DRAPE_REQUIRE(!desc->enabled, DRAPE_ERROR_BACKEND_UNAVAILABLE,
-                      "self-collision is not implemented on the GLES backend yet: use a CPU or CPU_THREADED "
-                      "cloth, or leave it off");
-        return ok();  // off on GLES: nothing to do (it is never on there)
-    }
+    if (desc->enabled)
+        if (drape_status s = check_supports(c, Feature::SelfCollision)) return s;
     return guarded([&] {
         c->set_self_collision(desc->enabled != 0, desc->thickness, desc->friction);
         return ok();

@@ -1,7 +1,9 @@
-// A cloth: cooked topology + parameters + run-time state, and the world that owns cloths and the
-// worker pool. The C ABI (src/api) validates every input before it reaches these classes.
+// A cloth: cooked topology + parameters + run-time state behind the interface every backend
+// implements, and the world that owns cloths and the worker pool. The C ABI (src/api) validates
+// every input before it reaches these classes.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -10,8 +12,6 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "backend/cpu/implicit_solve.h"
-#include "backend/cpu/kernels.h"
 #include "backend/cpu/thread_pool.h"
 #include "core/interaction.h"  // colliders, drag, owner, sleep
 #include "core/params.h"
@@ -30,10 +30,41 @@ struct Result {
     bool ok() const { return status == DRAPE_OK; }
 };
 
+/// What a cloth can do beyond the core set (a backend refuses the rest with a clear Result).
+enum class Feature { ImplicitModel, Sleep, Grab, Owner, SelfCollision };
+
+/// A cloth: what every backend shares (cooked topology, parameters, masses, pins, colliders,
+/// interaction settings and the CPU copy of the state, with the setters that change them) and the
+/// interface each backend implements (step, edit, read, stats, output, readback, capabilities).
+/// Backends are siblings: backend/cpu/cpu_cloth.h, backend/gles/gles_cloth.h (backend/backends.h
+/// creates them); the C ABI calls only this interface.
 class Cloth {
 public:
+    using Particle = glm::vec4;
+    /// What a setter does to the particle state: reads it (a backend whose state lives elsewhere
+    /// brings it to the CPU copy first, and takes it back after), overwrites it (taken back
+    /// after), or leaves it (parameters, pin targets).
+    enum class Access { ReadsState, WritesState, NoState };
+
     Cloth(World& world, drape_backend backend, Topology topology);
     virtual ~Cloth() = default;
+
+    // ---- the backend interface ----
+    /// Steps by dt; on divergence restores the state from before the step.
+    virtual Result step(float dt) = 0;
+    /// Applies a setter (fn, on this cloth's shared part) now, or where the backend's state lives.
+    virtual Result edit(Access access, std::function<void(Cloth&)> fn) = 0;
+    /// Writes positions/normals per caller vertex. Layout and size already validated.
+    virtual Result read(const drape_vertex_layout& layout, void* dst) = 0;
+    virtual Result stats(drape_stats* out) = 0;
+    /// Output target: GL buffer name (0 = none) with a layout already validated by the API.
+    virtual Result set_output(uint32_t gl_buffer, const drape_vertex_layout& layout) = 0;
+    /// Explicit readback of state held outside the CPU copy.
+    virtual Result readback() = 0;
+    /// OK, or why this backend cannot do it.
+    virtual Result supports(Feature feature) const = 0;
+    /// True when the world may step it on a pool thread next to other cloths.
+    virtual bool steps_on_pool_thread() const = 0;
 
     World& world() const { return world_; }
     drape_backend backend() const { return backend_; }
@@ -48,14 +79,6 @@ public:
     void release_pins(const uint32_t* vertices, uint32_t count);
     void set_positions(const float* xyz);
     void set_velocities(const float* xyz);
-
-    /// Steps by dt; on divergence restores the state from before the step. Virtual for the GLES
-    /// backend (src/backend/gles), which steps on the GPU.
-    virtual Result step(float dt);
-
-    /// Writes positions/normals per caller vertex. Layout and size already validated.
-    void read(const drape_vertex_layout& layout, void* dst) const;
-    void stats(drape_stats* out) const;
 
     // ---- colliders, sleep, touch drag, grabs, owner (defined in core/interaction.cpp) ----
     void set_colliders(const drape_collider* colliders, uint32_t count);
@@ -94,53 +117,39 @@ public:
     void set_origin(const glm::dvec3& origin) { origin_ = origin; }
 
 protected:
-    using Particle = glm::vec4;
+    /// Positions/normals of the CPU copy per caller vertex.
+    void read_cpu_copy(const drape_vertex_layout& layout, void* dst) const;
+    /// stats_ plus the energies of the CPU copy.
+    void stats_of_cpu_copy(drape_stats* out) const;
 
     void refresh_derived();  // after params or masses change
-    void recentre();         // moves origin_ near the cloth, shifting every held position
+    /// The backend's own data derived from params and masses (refresh_derived ends with it).
+    virtual void refresh_backend() {}
     glm::dvec3 origin_{0.0};
-    // hooks in step() (core/interaction.cpp)
+    // hooks in the CPU step (core/interaction.cpp)
     bool skip_step_asleep();
     void interaction_substep(uint32_t sub, uint32_t substeps);
     void interaction_end_step(float dt, bool rolled_back);
     Interaction ix_;
-    void self_collision_substep();  // hook in step() (core/self_collision.cpp)
+    void self_collision_substep();  // hook in the CPU step (core/self_collision.cpp)
     SelfCollision sc_;
-    template <class Fn>
-    void for_particles(Fn&& fn);
 
     World& world_;
     const drape_backend backend_;
     const Topology topo_;
     drape_params params_;
 
-    // Run-time state: positions (cur_) and displacements over the last substep (disp_, see
-    // kernels.h), plus two scratch buffers; the four buffers' roles rotate.
-    std::vector<Particle> buffers_[4];
-    int cur_ = 0, disp_ = 1, spare_ = 2, spare2_ = 3;
+    // CPU copy of the run-time state: positions x_ and displacements over the last substep d_
+    // (see backend/cpu/kernels.h), one record per particle.
+    std::vector<Particle> x_, d_;
     float h_prev_ = 1.0f;   ///< previous substep; velocity = disp / h_prev
     bool fresh_ = true;     ///< next substep is the first since positions/velocities were set
-    std::vector<float> lambda_;
-    // IMPLICIT model (Cloth::implicit_substep): the substep's inertial target and the prefactored
-    // matrix (backend/cpu/implicit_solve.h).
-    std::vector<Particle> target_;
-    ImplicitSolve implicit_;
-    template <class KinematicAt>
-    void implicit_substep(kernels::SubstepContext& c, const KinematicAt& kinematic_at);
-    void factor_implicit(float h);
-    float last_h_ = 0;  ///< substep of the last step, s (0: none yet)
-    std::vector<float> slot_coef_;  ///< per-spring Jacobi factor of the current step (kernels.h)
-    // Column-major copy of the neighbour table for the constraint iteration (kernels.h).
-    std::vector<uint32_t> col_index_;
-    std::vector<float> col_rest_;
-    std::vector<uint8_t> col_group_;
 
     // Masses and pins.
     std::vector<float> base_inverse_mass_;   ///< per particle, before pinning
     std::vector<uint8_t> pinned_;            ///< explicit pin (drape_cloth_set_pins)
     std::vector<glm::vec3> kinematic_target_;///< where a particle with w = 0 goes this step
     std::vector<uint32_t> kinematic_;        ///< particles with w = 0
-    std::vector<glm::vec3> kinematic_start_; ///< their positions at the start of the step
 
     // Tethers: nearest kinematic particle along the cloth and that rest distance (-1: none);
     // rebuilt only when the set of kinematic particles changes (moving pins keeps them).
@@ -153,16 +162,7 @@ protected:
     std::vector<uint32_t> active_count_;
     float ms_h_max_ = 0;  ///< MASS_SPRING: largest stable substep from the explicit bound, s
 
-    // Rollback copy and per-thread verify partials (allocated once).
-    std::vector<Particle> backup_cur_, backup_disp_;
-    struct VerifyPartial {
-        bool finite;
-        float max_strain_all, max_strain, sum_sq;
-        uint32_t count;
-    };
-    std::vector<VerifyPartial> partials_;
     mutable std::vector<glm::vec3> normals_;
-
     drape_stats stats_{};
 };
 

@@ -1,6 +1,6 @@
 // Cloth's interaction with the world and the user: colliders, sleeping, touch drag
 // (paper eq. 9), pick-and-hold grabs and the owner transform. The C ABI (src/api) has validated
-// every input. The step hooks are called from Cloth::step (core/cloth.cpp).
+// every input. The step hooks are called from the CPU step (backend/cpu/cpu_cloth.cpp).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -139,8 +139,8 @@ bool Cloth::skip_step_asleep() {
 
 void Cloth::interaction_substep(uint32_t sub, uint32_t substeps) {
     const uint32_t n = topo_.particle_count;
-    Particle* x = buffers_[cur_].data();
-    Particle* d = buffers_[disp_].data();  // this substep's displacement: start = x - d
+    Particle* x = x_.data();
+    Particle* d = d_.data();  // this substep's displacement: start = x - d
 
     // Touch drag: 1/substeps of the step's displacement in the first substep gives the vertex
     // the finger's velocity (offset / dt); inertia carries it the rest of the way, so a free
@@ -212,7 +212,7 @@ void Cloth::interaction_end_step(float dt, bool rolled_back) {
     }
     // Fastest particle over the last substep.
     const uint32_t n = topo_.particle_count;
-    const Particle* disp = buffers_[disp_].data();
+    const Particle* disp = d_.data();
     const float limit = ix_.sleep_threshold * h_prev_;
     const float limit2 = limit * limit;
     bool still = true;
@@ -227,7 +227,7 @@ void Cloth::interaction_end_step(float dt, bool rolled_back) {
     ix_.still_time += dt;
     if (ix_.still_time >= ix_.sleep_time) {
         // Fall asleep at rest: velocities zeroed so that waking starts from rest.
-        Particle* dw = buffers_[disp_].data();
+        Particle* dw = d_.data();
         for (uint32_t i = 0; i < n; ++i) dw[i] = Particle(glm::vec3(0.0f), dw[i].w);
         ix_.asleep = true;
         stats_.sleeping = 1;
@@ -244,7 +244,7 @@ void Cloth::drag(const drape_view& view, const drape_touch* touches, uint32_t co
         ix_.drag_particles.reserve(n);
     }
     const ScreenMapping m = make_screen_mapping(view, origin_);
-    const Particle* x = buffers_[cur_].data();
+    const Particle* x = x_.data();
     bool moved = false;
     for (uint32_t i = 0; i < n; ++i) {
         if (x[i].w == 0.0f) continue;
@@ -275,7 +275,7 @@ void Cloth::drag(const drape_view& view, const drape_touch* touches, uint32_t co
 uint32_t Cloth::grab(const drape_view& view, uint32_t touch_id, const float position[2], float pick_radius) {
     grab_release(touch_id);
     const ScreenMapping m = make_screen_mapping(view, origin_);
-    const Particle* x = buffers_[cur_].data();
+    const Particle* x = x_.data();
     const glm::dvec2 touch(position[0], position[1]);
     double best = double(pick_radius) * pick_radius;
     uint32_t best_vertex = std::numeric_limits<uint32_t>::max();
@@ -327,7 +327,7 @@ void Cloth::grab_release(uint32_t touch_id) {
         const uint32_t i = ix_.grabs[k].particle;
         ix_.grabs.erase(ix_.grabs.begin() + long(k));
         pinned_[i] = 0;
-        kinematic_target_[i] = glm::vec3(buffers_[cur_][i]);
+        kinematic_target_[i] = glm::vec3(x_[i]);
         refresh_derived();
         wake();
         return;
@@ -352,8 +352,8 @@ void Cloth::set_owner(const drape_owner& o) {
     ix_.owner_pos = pos;
     ix_.owner_rot = rot;
     const uint32_t n = topo_.particle_count;
-    Particle* cur = buffers_[cur_].data();
-    Particle* disp = buffers_[disp_].data();
+    Particle* cur = x_.data();
+    Particle* disp = d_.data();
     auto full = [&](const glm::vec3& x) { return dq * (x - p_old) + pos; };
     if (glm::length(pos - p_old) > o.teleport_distance) {
         // Teleport: the whole cloth (and its pins) jumps rigidly with the owner, at rest.

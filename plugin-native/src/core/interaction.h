@@ -1,6 +1,7 @@
 // Run-time state of what a cloth interacts with: colliders, touch drag, grabs, the
 // owner transform, and sleeping. Owned by Cloth (member ix_); the Cloth member functions that use
-// it are defined in core/interaction.cpp, and Cloth::step calls three small hooks:
+// it are defined in core/interaction.cpp, and the CPU step (backend/cpu/cpu_cloth.cpp) calls
+// three hooks:
 //   skip_step_asleep() at the top, interaction_substep() after each substep's solve (on the
 //   committed positions), interaction_end_step() when the step is done.
 #pragma once

@@ -20,8 +20,8 @@ void Cloth::set_self_collision(bool enabled, float thickness, float friction) {
 
 void Cloth::self_collision_substep() {
     const uint32_t n = topo_.particle_count;
-    Particle* x = buffers_[cur_].data();
-    Particle* d = buffers_[disp_].data();  // this substep's displacement: start = x - d
+    Particle* x = x_.data();
+    Particle* d = d_.data();  // this substep's displacement: start = x - d
     SelfCollision& s = sc_;
     const float t = s.thickness;
     if (s.cell.size() != n) {  // first use: size everything once (hash: a power of two >= 2n buckets)

@@ -1,6 +1,6 @@
 // The IMPLICIT model's linear solve: A = M/h^2 + sum_springs (k + kd/h) (e_i - e_j)(e_i - e_j)^T
 // over the free particles (kinematic ones enter only through the residual), factored once by a
-// sparse Cholesky and applied to the residual of each iteration (Cloth::implicit_substep).
+// sparse Cholesky and applied to the residual of each iteration (CpuCloth::implicit_substep).
 #pragma once
 
 #include <cstdint>

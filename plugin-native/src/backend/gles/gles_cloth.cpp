@@ -290,7 +290,7 @@ void release_gl(GlObjects& objects) {
 
 GlesCloth::GlesCloth(World& world, Topology topology, Mode mode)
     : Cloth(world, DRAPE_BACKEND_GLES, std::move(topology)), mode_(mode) {
-    // Incident triangles per particle, in triangle order (the order Cloth::read sums them).
+    // Incident triangles per particle, in triangle order (the order Cloth::read_cpu_copy sums them).
     std::vector<uint32_t> incident(topo_.particle_count, 0);
     for (uint32_t p : topo_.triangles) ++incident[p];
     for (uint32_t c : incident) tri_slots_ = std::max(tri_slots_, c);
@@ -458,10 +458,10 @@ Result GlesCloth::sync_gpu() {
 void GlesCloth::push_state() {
     // State records (positions x -> role cur, displacements d -> role disp) are one vec4 each.
     const uint32_t n = topo_.particle_count;
-    const int sources[2] = {cur_, disp_};
+    const Particle* const sources[2] = {x_.data(), d_.data()};
     for (int k = 0; k < 2; ++k) {
         glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[g_[k]]);
-        glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(n) * sizeof(Particle)), buffers_[sources[k]].data());
+        glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(n) * sizeof(Particle)), sources[k]);
         refresh_texture(g_[k]);
     }
     glBindBuffer(GL_ARRAY_BUFFER, 0);
@@ -484,7 +484,7 @@ Result GlesCloth::pull() {
     if (!context_current(&why))
         return {DRAPE_ERROR_BACKEND_UNAVAILABLE, "reading a GLES cloth back needs its GL context: " + why};
     const uint32_t n = topo_.particle_count;
-    const int targets[2] = {cur_, disp_};  // GPU roles cur (x) and disp (d)
+    Particle* const targets[2] = {x_.data(), d_.data()};  // from GPU roles cur (x) and disp (d)
     GLint bound = 0;
     glGetIntegerv(GL_COPY_READ_BUFFER_BINDING, &bound);
     for (int k = 0; k < 2; ++k) {
@@ -496,7 +496,7 @@ Result GlesCloth::pull() {
             glBindBuffer(GL_COPY_READ_BUFFER, GLuint(bound));
             return r.ok() ? Result{DRAPE_ERROR_GL, "glMapBufferRange returned NULL (readback)"} : r;
         }
-        std::memcpy(buffers_[targets[k]].data(), src, size_t(n) * sizeof(Particle));  // state records
+        std::memcpy(targets[k], src, size_t(n) * sizeof(Particle));  // state records
         glUnmapBuffer(GL_COPY_READ_BUFFER);
     }
     glBindBuffer(GL_COPY_READ_BUFFER, GLuint(bound));
@@ -506,8 +506,8 @@ Result GlesCloth::pull() {
 }
 
 void GlesCloth::compute_cpu_stats() {
-    // The verify pass of Cloth::step, on the read-back copy (the GPU step has no verify pass).
-    const Particle* x = buffers_[cur_].data();
+    // The CPU step's verify pass, on the read-back copy (the GPU step has no verify pass).
+    const Particle* x = x_.data();
     const NeighbourTable& nb = topo_.nbr;
     bool finite = true;
     float max_strain = 0;
@@ -1030,7 +1030,7 @@ Result GlesCloth::write_output() {
     return gl_error("writing the output buffer");
 }
 
-Result GlesCloth::set_output(GLuint buffer, const drape_vertex_layout& layout) {
+Result GlesCloth::set_output(uint32_t buffer, const drape_vertex_layout& layout) {
     std::lock_guard<std::mutex> lock(mutex_);
     // Which words of the record this pass does not own (copied through).
     std::vector<std::pair<int, int>> keeps;
@@ -1127,19 +1127,39 @@ Result GlesCloth::readback() {
     return pull();
 }
 
-Result GlesCloth::read_out(const drape_vertex_layout& layout, void* dst) {
+Result GlesCloth::read(const drape_vertex_layout& layout, void* dst) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (gpu_newer_ && mode_ == Mode::Immediate)
         if (Result r = pull(); !r.ok()) return r;
-    Cloth::read(layout, dst);
+    read_cpu_copy(layout, dst);
     return {};
 }
 
-Result GlesCloth::stats_out(drape_stats* out) {
+Result GlesCloth::stats(drape_stats* out) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (gpu_newer_ && mode_ == Mode::Immediate)
         if (Result r = pull(); !r.ok()) return r;
-    Cloth::stats(out);
+    stats_of_cpu_copy(out);
+    return {};
+}
+
+Result GlesCloth::supports(Feature feature) const {
+    auto cpu_only = [](const char* what) {
+        return Result{DRAPE_ERROR_BACKEND_UNAVAILABLE,
+                      std::string(what) + " is not implemented on the GLES backend yet (CPU backends only)"};
+    };
+    switch (feature) {
+    case Feature::ImplicitModel:
+        return {DRAPE_ERROR_BACKEND_UNAVAILABLE,
+                "model IMPLICIT runs on the CPU backends only (its sparse Cholesky solve has no GLES form yet); "
+                "GLES runs MASS_SPRING, PBD and XPBD"};
+    case Feature::Sleep: return cpu_only("sleeping");
+    case Feature::Grab: return cpu_only("grab");
+    case Feature::Owner: return cpu_only("owner transform");
+    case Feature::SelfCollision:
+        return {DRAPE_ERROR_BACKEND_UNAVAILABLE, "self-collision is not implemented on the GLES backend yet: use a "
+                                                 "CPU or CPU_THREADED cloth, or leave it off"};
+    }
     return {};
 }
 

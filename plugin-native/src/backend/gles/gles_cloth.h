@@ -1,7 +1,8 @@
-// OpenGL ES 3.0 transform-feedback backend: a Cloth whose state lives in GL buffers.
+// OpenGL ES 3.0 transform-feedback backend: a Cloth whose state lives in GL buffers (the shared
+// CPU copy, Cloth::x_ and d_, is refreshed on demand).
 //
 // Data on the GPU (per cloth; W = kTexWidth texels per texture row):
-//   particle buffers x4 (ping-pong, roles rotate like Cloth's cur/disp/spare/spare2). The state is
+//   particle buffers x4 (ping-pong, roles rotate like the CPU step's x/d/spare/spare2). The state is
 //     as on the CPU (kernels.h): positions x and displacements d over the last substep, one vec4
 //     record per particle (xyz + inverse mass). PBD/XPBD displacement iterates are records of
 //     R vec4s, R = 1 or, for XPBD, 1 + ceil(slots/4) (record + lambdas per slot); every buffer is
@@ -66,9 +67,6 @@ void release_gl(GlObjects& objects);
 class GlesCloth final : public Cloth {
 public:
     enum class Mode { Immediate, RenderThread };
-    /// What a setter does to the particle state: reads it (pulled first if the GPU copy is newer,
-    /// pushed after), overwrites it (pushed after), or leaves it (parameters, pin targets).
-    enum class Access { ReadsState, WritesState, NoState };
 
     GlesCloth(World& world, Topology topology, Mode mode);
     ~GlesCloth() override;
@@ -80,16 +78,18 @@ public:
     /// Immediate: steps on the GPU now. RenderThread: records the step; returns an error the
     /// render thread met since the last call (then cleared).
     Result step(float dt) override;
-
-    /// Applies a setter now, or (RenderThread, when it must wait for GPU state) on the render thread.
-    Result edit(Access access, std::function<void(Cloth&)> fn);
-    /// Output target: GL buffer name (0 = none) with a layout already validated by the API.
-    Result set_output(GLuint buffer, const drape_vertex_layout& layout);
-    /// Explicit readback: copies the GPU state into the CPU copy (RenderThread: at the next event).
-    Result readback();
+    /// Applies a setter now (state pulled first if the GPU copy is newer and the setter reads it),
+    /// or (RenderThread, when it must wait for GPU state) on the render thread.
+    Result edit(Access access, std::function<void(Cloth&)> fn) override;
     /// drape_cloth_read / get_stats: CPU copy, pulled first when stale (needs the context).
-    Result read_out(const drape_vertex_layout& layout, void* dst);
-    Result stats_out(drape_stats* out);
+    Result read(const drape_vertex_layout& layout, void* dst) override;
+    Result stats(drape_stats* out) override;
+    Result set_output(uint32_t gl_buffer, const drape_vertex_layout& layout) override;
+    /// Explicit readback: copies the GPU state into the CPU copy (RenderThread: at the next event).
+    Result readback() override;
+    Result supports(Feature feature) const override;
+    /// GL work needs the caller's context: stepped on the thread that steps the world.
+    bool steps_on_pool_thread() const override { return false; }
 
     /// RenderThread: run the recorded work (render thread, context current).
     void run_pending();

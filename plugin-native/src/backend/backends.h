@@ -1,0 +1,17 @@
+// The one place that knows every backend: which are available, and creating a cloth of one. The
+// C ABI goes through it and otherwise calls only the Cloth interface (core/cloth.h).
+#pragma once
+
+#include <memory>
+
+#include "core/cloth.h"
+
+namespace drape {
+
+/// OK, or why `backend` cannot create cloths in this build, on this thread.
+Result backend_available(drape_backend backend);
+
+/// A new cloth of an available backend in `world` (not yet added to it).
+Result create_cloth(World& world, drape_backend backend, Topology topology, std::unique_ptr<Cloth>* out);
+
+}  // namespace drape

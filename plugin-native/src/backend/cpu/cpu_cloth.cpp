@@ -1,0 +1,318 @@
+#include "backend/cpu/cpu_cloth.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "backend/cpu/kernels_simd.h"
+
+namespace drape::cpu {
+
+CpuCloth::CpuCloth(World& world, drape_backend backend, Topology topology)
+    : Cloth(world, backend, std::move(topology)) {
+    const uint32_t n = topo_.particle_count;
+    spare_.resize(n);
+    spare2_.resize(n);
+    lambda_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
+    target_.resize(n);
+    slot_coef_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
+    const NeighbourTable& nb = topo_.nbr;
+    col_index_.resize(nb.index.size());
+    col_rest_.resize(nb.rest.size());
+    col_group_.resize(nb.group.size());
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t s = 0; s < nb.slots; ++s) {
+            col_index_[size_t(s) * n + i] = nb.index[size_t(i) * nb.slots + s];
+            col_rest_[size_t(s) * n + i] = nb.rest[size_t(i) * nb.slots + s];
+            col_group_[size_t(s) * n + i] = nb.group[size_t(i) * nb.slots + s];
+        }
+    kinematic_start_.resize(n);
+    backup_x_.resize(n);
+    backup_d_.resize(n);
+    partials_.resize(world.pool().size());
+    refresh_backend();  // the base constructor's refresh_derived ran before this class existed
+}
+
+void CpuCloth::refresh_backend() {
+    // IMPLICIT: refactor now (not in step, which must not allocate) when what the matrix depends
+    // on changed: effective masses (which particles are kinematic, masses), stiffness, damping.
+    const uint32_t n = topo_.particle_count;
+    if (params_.model == DRAPE_MODEL_IMPLICIT) {
+        if (implicit_.inputs_changed(params_, x_.data(), n) || implicit_.h() == 0)
+            factor_implicit(last_h_ > 0 ? last_h_ : kDefaultH / float(kAutoSubstepsImplicit));
+    } else {
+        implicit_.clear();
+    }
+}
+
+template <class KinematicAt>
+void CpuCloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& kinematic_at) {
+    // Target y into target_, inertia as the first iterate into spare2; then each iteration
+    // d += A^-1 r, r = kernels::implicit_residual, A = M/h^2 + sum_springs (k + kd/h) (e_i - e_j)
+    // (e_i - e_j)^T over the free particles: Projective Dynamics' constant matrix (Bouaziz et al.
+    // 2014), prefactored, as the preconditioner of the exact force residual. A bounds the spring
+    // Hessian (k n n^T + k (1 - L/l)(I - n n^T) <= k I), so every iteration lowers Phi; it solves
+    // the linear part (rigid motion, stretch of a hanging cloth) in one iteration, which local
+    // Jacobi-type sweeps need O(n) iterations for; and the fixed point is the exact equilibrium
+    // whatever A is (kernels::implicit_residual), so A is refactored only when it drifts far.
+    Particle* cur = x_.data();
+    Particle* disp = d_.data();
+    Particle* target = target_.data();
+    Particle* iterate = spare2_.data();
+    Particle* residual = spare_.data();
+    for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_predict(c, cur, disp, target, iterate, b, e); });
+    for (uint32_t k : kinematic_) target[k] = iterate[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
+    if (!(std::fabs(implicit_.h() / c.h - 1.0f) < kImplicitRefactor)) factor_implicit(c.h);  // dt changed a lot
+    const uint32_t iterations = iterations_for();
+    for (uint32_t it = 0; it < iterations; ++it) {
+        for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_residual(c, iterate, target, cur, residual, b, e); });
+        implicit_.apply(residual, iterate);
+    }
+    // Commit: positions start + d into the old displacement buffer, d becomes the state.
+    for_particles([&](uint32_t b, uint32_t e) {
+        for (uint32_t i = b; i < e; ++i) disp[i] = Particle(glm::vec3(cur[i]) + glm::vec3(iterate[i]), cur[i].w);
+    });
+    x_.swap(d_);
+    d_.swap(spare2_);
+}
+
+void CpuCloth::factor_implicit(float h) {
+    implicit_.factor(topo_.nbr, params_, x_.data(), topo_.particle_count, h);
+}
+
+template <class Fn>
+void CpuCloth::for_particles(Fn&& fn) {
+    if (backend_ == DRAPE_BACKEND_CPU_THREADED)
+        world_.pool().parallel_for(topo_.particle_count, fn);
+    else
+        fn(0u, topo_.particle_count);
+}
+
+// Far from the caller's origin floats lose the cloth's detail (1e4 m: 1 mm steps), so positions
+// are held relative to origin_; once the cloth has drifted kRecentreDistance (core/params.h) from
+// it, origin_ moves by whole metres and every held position (state, pin targets, colliders, owner, the
+// self-collision reference) shifts back by the same exact amount.
+void CpuCloth::recentre() {
+    const glm::vec3 x0 = glm::vec3(x_[0]);
+    if (!(std::fabs(x0.x) > kRecentreDistance || std::fabs(x0.y) > kRecentreDistance ||
+          std::fabs(x0.z) > kRecentreDistance))
+        return;
+    const glm::vec3 shift = glm::round(x0);
+    origin_ += glm::dvec3(shift);
+    for (Particle& p : x_) p = Particle(glm::vec3(p) - shift, p.w);
+    for (glm::vec3& t : kinematic_target_) t -= shift;
+    for (ColliderState& c : ix_.colliders) {
+        c.pos_start -= shift;
+        c.pos_end -= shift;
+    }
+    ix_.owner_pos -= shift;
+    for (glm::vec3& b : sc_.built) b -= shift;
+}
+
+Result CpuCloth::step(float dt) {
+    if (skip_step_asleep()) return {};  // asleep -> no work (core/interaction.cpp)
+    const auto t0 = std::chrono::steady_clock::now();
+    const uint32_t n = topo_.particle_count;
+    const NeighbourTable& nb = topo_.nbr;
+    const uint32_t substeps = substeps_for(dt);
+    const float h = dt / float(substeps);
+    last_h_ = h;
+    const drape_model model = drape_model(params_.model);
+
+    std::memcpy(backup_x_.data(), x_.data(), n * sizeof(Particle));
+    std::memcpy(backup_d_.data(), d_.data(), n * sizeof(Particle));
+    const float backup_h_prev = h_prev_;
+    const bool backup_fresh = fresh_;
+    for (uint32_t k : kinematic_) kinematic_start_[k] = glm::vec3(x_[k]);
+
+    kernels::SubstepContext c{};
+    c.nbr_index = nb.index.data();
+    c.nbr_rest = nb.rest.data();
+    c.nbr_group = nb.group.data();
+    c.nbr_count = nb.count.data();
+    c.active_count = active_count_.data();
+    c.slots = nb.slots;
+    c.stride = n;
+    c.col_index = col_index_.data();
+    c.col_rest = col_rest_.data();
+    c.col_group = col_group_.data();
+    const uint32_t iterations = iterations_for();
+    c.lambda = model == DRAPE_MODEL_XPBD && iterations > 1 ? lambda_.data() : nullptr;
+    for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) {
+        const float k = params_.stiffness[g];
+        c.groups.stiffness[g] = k;
+        c.groups.active[g] = k > 0;
+        c.groups.compliance[g] = k > 0 ? 1.0f / (k * h * h) : 0.0f;
+        c.groups.damping_ratio[g] = k > 0 ? params_.damping / (k * h) : 0.0f;
+    }
+    c.gravity = glm::vec3(params_.gravity[0], params_.gravity[1], params_.gravity[2]);
+    c.wind = glm::vec3(params_.wind[0], params_.wind[1], params_.wind[2]);
+    c.air_drag = params_.air_drag;
+    c.damping = params_.damping;
+    c.h = h;
+    if (model == DRAPE_MODEL_XPBD)
+        for_particles([&](uint32_t b, uint32_t e) {
+            kernels::spring_coefficients<true>(c, x_.data(), slot_coef_.data(), b, e);
+        });
+    else if (model == DRAPE_MODEL_PBD)
+        for_particles([&](uint32_t b, uint32_t e) {
+            kernels::spring_coefficients<false>(c, x_.data(), slot_coef_.data(), b, e);
+        });
+
+    for (uint32_t sub = 0; sub < substeps; ++sub) {
+        c.h_prev = h_prev_;
+        c.h_ratio = h / h_prev_;
+        c.accel_h = fresh_ ? 0.5f * h : 0.5f * (h + h_prev_);
+        Particle* cur = x_.data();
+        Particle* disp = d_.data();
+        Particle* spare = spare_.data();
+        Particle* spare2 = spare2_.data();
+        // Kinematic particles move along a straight line from their start to their target.
+        const float along = float(sub + 1) / float(substeps);
+        auto kinematic_at = [&](uint32_t k) {
+            return kinematic_start_[k] + (kinematic_target_[k] - kinematic_start_[k]) * along;
+        };
+        if (model == DRAPE_MODEL_IMPLICIT) {
+            implicit_substep(c, kinematic_at);
+        } else if (model == DRAPE_MODEL_MASS_SPRING) {
+            for_particles([&](uint32_t b, uint32_t e) { kernels::mass_spring_step(c, cur, disp, spare, spare2, b, e); });
+            for (uint32_t k : kinematic_) {
+                spare[k] = Particle(kinematic_at(k), 0.0f);
+                spare2[k] = Particle(glm::vec3(spare[k]) - glm::vec3(cur[k]), 0.0f);
+            }
+            x_.swap(spare_);
+            d_.swap(spare2_);
+        } else {
+            // predict: displacements into spare; iterate spare <-> spare2; the last iteration
+            // also writes positions, into the displacement buffer (free after predict).
+            if (model == DRAPE_MODEL_PBD && params_.damping > 0)
+                for_particles([&](uint32_t b, uint32_t e) { kernels::predict<true>(c, cur, disp, spare, b, e); });
+            else
+                for_particles([&](uint32_t b, uint32_t e) { kernels::predict<false>(c, cur, disp, spare, b, e); });
+            for (uint32_t k : kinematic_) spare[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
+            std::vector<Particle>* in = &spare_;
+            std::vector<Particle>* out = &spare2_;
+            const bool xpbd = model == DRAPE_MODEL_XPBD;
+            const float* coef = slot_coef_.data();
+            for (uint32_t it = 0; it < iterations; ++it) {
+                const bool last = it + 1 == iterations;
+                Particle* src = in->data();
+                Particle* dst = out->data();
+                for_particles([&](uint32_t b, uint32_t e) {
+                    using kernels::constraint_iteration_simd;
+                    if (xpbd && last) constraint_iteration_simd<true, true>(c, coef, src, cur, dst, disp, b, e);
+                    else if (xpbd) constraint_iteration_simd<true, false>(c, coef, src, cur, dst, nullptr, b, e);
+                    else if (last) constraint_iteration_simd<false, true>(c, coef, src, cur, dst, disp, b, e);
+                    else constraint_iteration_simd<false, false>(c, coef, src, cur, dst, nullptr, b, e);
+                });
+                std::swap(in, out);
+            }
+            // Positions went to the old displacement buffer, displacements to `in`; the old
+            // positions become spare_ and the last scratch spare2_.
+            x_.swap(d_);
+            d_.swap(*in);
+            if (in != &spare_) spare_.swap(spare2_);
+        }
+        if (params_.max_stretch > 0 && !kinematic_.empty()) {
+            Particle* x = x_.data();
+            Particle* d = d_.data();
+            for_particles([&](uint32_t b, uint32_t e) {
+                kernels::tether(tether_anchor_.data(), tether_length_.data(), x, d, b, e);
+            });
+        }
+        if (sc_.enabled) self_collision_substep();  // core/self_collision.cpp
+        // touch drag + colliders on the committed positions (core/interaction.cpp)
+        if (!ix_.colliders.empty() || !ix_.drag_particles.empty()) interaction_substep(sub, substeps);
+        h_prev_ = h;
+        fresh_ = false;
+    }
+
+    // Verify: finite positions and no runaway strain; strain statistics on the way.
+    const Particle* x = x_.data();
+    auto verify = [&](uint32_t t, uint32_t b, uint32_t e) {
+        VerifyPartial p{true, 0, 0, 0, 0};
+        for (uint32_t i = b; i < e; ++i) {
+            if (!(std::isfinite(x[i].x) && std::isfinite(x[i].y) && std::isfinite(x[i].z))) p.finite = false;
+            const size_t row = size_t(i) * nb.slots;
+            for (uint32_t s = 0; s < nb.count[i]; ++s) {
+                const uint32_t j = nb.index[row + s];
+                const uint8_t g = nb.group[row + s];
+                if (j < i || !(params_.stiffness[g] > 0) || !(nb.rest[row + s] > 0)) continue;
+                const float strain = glm::length(glm::vec3(x[i]) - glm::vec3(x[j])) / nb.rest[row + s] - 1.0f;
+                const float a = std::fabs(strain);
+                if (!(a <= p.max_strain_all)) p.max_strain_all = a;  // also catches NaN
+                if (g != DRAPE_GROUP_BEND) {
+                    p.max_strain = std::max(p.max_strain, a);
+                    p.sum_sq += strain * strain;
+                    ++p.count;
+                }
+            }
+        }
+        partials_[t] = p;
+    };
+    const uint32_t parts = backend_ == DRAPE_BACKEND_CPU_THREADED ? world_.pool().size() : 1;
+    if (parts == 1) {
+        verify(0, 0, n);
+    } else {
+        world_.pool().run_on_all([&](uint32_t t) {
+            verify(t, uint32_t(uint64_t(n) * t / parts), uint32_t(uint64_t(n) * (t + 1) / parts));
+        });
+    }
+    VerifyPartial total{true, 0, 0, 0, 0};
+    for (uint32_t t = 0; t < parts; ++t) {
+        total.finite = total.finite && partials_[t].finite;
+        if (!(partials_[t].max_strain_all <= total.max_strain_all)) total.max_strain_all = partials_[t].max_strain_all;
+        total.max_strain = std::max(total.max_strain, partials_[t].max_strain);
+        total.sum_sq += partials_[t].sum_sq;
+        total.count += partials_[t].count;
+    }
+
+    stats_.substeps = substeps;
+    stats_.iterations = model == DRAPE_MODEL_MASS_SPRING ? 1 : iterations;
+    stats_.step_ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const bool runaway = !(total.max_strain_all <= kRunawayStrain);
+    stats_.non_finite = total.finite ? 0 : 1;
+    if (!total.finite || runaway) {
+        std::memcpy(x_.data(), backup_x_.data(), n * sizeof(Particle));
+        std::memcpy(d_.data(), backup_d_.data(), n * sizeof(Particle));
+        h_prev_ = backup_h_prev;
+        fresh_ = backup_fresh;
+        // kinematic_target_ keeps the requested pin and grab moves: the next step makes them.
+        ++stats_.unstable_steps;
+        interaction_end_step(dt, true);
+        return {DRAPE_ERROR_UNSTABLE,
+                std::string("step diverged (") + (total.finite ? "runaway strain" : "non-finite positions") +
+                    " with " + std::to_string(substeps) + " substeps of " + std::to_string(h) +
+                    " s); the state before the step was restored. Raise substeps or lower stiffness."};
+    }
+    stats_.max_strain = total.max_strain;
+    stats_.rms_strain = total.count ? std::sqrt(total.sum_sq / float(total.count)) : 0.0f;
+    interaction_end_step(dt, false);  // colliders advance, drag consumed, sleep check
+    recentre();  // after the step, so a rolled-back step changes nothing
+    return {};
+}
+
+Result CpuCloth::edit(Access, std::function<void(Cloth&)> fn) {
+    fn(*this);
+    return {};
+}
+
+Result CpuCloth::read(const drape_vertex_layout& layout, void* dst) {
+    read_cpu_copy(layout, dst);
+    return {};
+}
+
+Result CpuCloth::stats(drape_stats* out) {
+    stats_of_cpu_copy(out);
+    return {};
+}
+
+Result CpuCloth::set_output(uint32_t, const drape_vertex_layout&) {
+    return {DRAPE_ERROR_INVALID_ARGUMENT, "an output GL buffer needs a GLES cloth; use drape_cloth_read for CPU cloths"};
+}
+
+}  // namespace drape::cpu

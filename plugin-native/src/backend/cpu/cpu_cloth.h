@@ -1,0 +1,63 @@
+// CPU backend: a Cloth stepped on the CPU, single-threaded (DRAPE_BACKEND_CPU) or over the world's
+// pool (DRAPE_BACKEND_CPU_THREADED, bit-identical to single-threaded). The state is the shared CPU
+// copy (Cloth::x_, d_) plus two scratch buffers; the four buffers' roles rotate (swapped, never
+// copied). Kernels: backend/cpu/kernels.h.
+#pragma once
+
+#include <vector>
+
+#include "backend/cpu/implicit_solve.h"
+#include "backend/cpu/kernels.h"
+#include "core/cloth.h"
+
+namespace drape::cpu {
+
+class CpuCloth final : public Cloth {
+public:
+    CpuCloth(World& world, drape_backend backend, Topology topology);
+
+    Result step(float dt) override;
+    Result edit(Access access, std::function<void(Cloth&)> fn) override;
+    Result read(const drape_vertex_layout& layout, void* dst) override;
+    Result stats(drape_stats* out) override;
+    Result set_output(uint32_t gl_buffer, const drape_vertex_layout& layout) override;
+    Result readback() override { return {}; }  // the CPU copy is the state
+    Result supports(Feature) const override { return {}; }
+    bool steps_on_pool_thread() const override { return backend_ == DRAPE_BACKEND_CPU; }
+
+private:
+    void refresh_backend() override;
+    void recentre();  // moves origin_ near the cloth, shifting every held position
+    template <class Fn>
+    void for_particles(Fn&& fn);
+
+    // Scratch buffers (their roles rotate with x_ and d_).
+    std::vector<Particle> spare_, spare2_;
+    std::vector<float> lambda_;
+    // IMPLICIT model (implicit_substep): the substep's inertial target and the prefactored
+    // matrix (backend/cpu/implicit_solve.h).
+    std::vector<Particle> target_;
+    ImplicitSolve implicit_;
+    template <class KinematicAt>
+    void implicit_substep(kernels::SubstepContext& c, const KinematicAt& kinematic_at);
+    void factor_implicit(float h);
+    float last_h_ = 0;  ///< substep of the last step, s (0: none yet)
+    std::vector<float> slot_coef_;  ///< per-spring Jacobi factor of the current step (kernels.h)
+    // Column-major copy of the neighbour table for the constraint iteration (kernels.h).
+    std::vector<uint32_t> col_index_;
+    std::vector<float> col_rest_;
+    std::vector<uint8_t> col_group_;
+
+    std::vector<glm::vec3> kinematic_start_;  ///< kinematic particles' positions at the start of the step
+
+    // Rollback copy and per-thread verify partials (allocated once).
+    std::vector<Particle> backup_x_, backup_d_;
+    struct VerifyPartial {
+        bool finite;
+        float max_strain_all, max_strain, sum_sq;
+        uint32_t count;
+    };
+    std::vector<VerifyPartial> partials_;
+};
+
+}  // namespace drape::cpu
