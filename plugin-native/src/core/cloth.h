@@ -94,7 +94,6 @@ public:
     void grab_release(uint32_t touch_id);
     void set_owner(const drape_owner& owner);
     uint64_t collide_tests() const { return ix_.collide_tests; }
-    // self-collision (defined in core/self_collision.cpp)
     void set_self_collision(bool enabled, float thickness, float friction);
     const SelfCollision& self_collision() const { return sc_; }
     uint32_t grab_count() const { return uint32_t(ix_.grabs.size()); }
@@ -126,13 +125,12 @@ protected:
     /// The backend's own data derived from params and masses (refresh_derived ends with it).
     virtual void refresh_backend() {}
     glm::dvec3 origin_{0.0};
-    // hooks in the CPU step (core/interaction.cpp)
+    // Step bookkeeping every backend does (core/interaction.cpp): asleep -> no step; after a step,
+    // colliders advance, drag is consumed and the sleep check runs.
     bool skip_step_asleep();
-    void interaction_substep(uint32_t sub, uint32_t substeps);
     void interaction_end_step(float dt, bool rolled_back);
     Interaction ix_;
-    void self_collision_substep();  // hook in the CPU step (core/self_collision.cpp)
-    SelfCollision sc_;
+    SelfCollision sc_;  // setting, and the CPU step's hash storage
 
     World& world_;
     const drape_backend backend_;

@@ -1,6 +1,6 @@
-// Cloth's interaction with the world and the user: colliders, sleeping, touch drag
-// (paper eq. 9), pick-and-hold grabs and the owner transform. The C ABI (src/api) has validated
-// every input. The step hooks are called from the CPU step (backend/cpu/cpu_cloth.cpp).
+// Cloth's interaction with the world and the user: colliders, self-collision setting, sleeping,
+// touch drag (paper eq. 9), pick-and-hold grabs and the owner transform. The C ABI (src/api) has
+// validated every input. The backends' steps call skip_step_asleep and interaction_end_step.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -10,7 +10,6 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "backend/cpu/collide.h"
 #include "core/cloth.h"
 #include "core/drag.h"
 
@@ -18,51 +17,6 @@ namespace drape {
 namespace {
 
 glm::quat to_quat(const float q[4]) { return glm::normalize(glm::quat(q[3], q[0], q[1], q[2])); }
-
-/// Normalised lerp along the shorter arc: accurate enough across one frame's substeps.
-glm::quat nlerp(const glm::quat& a, glm::quat b, float t) {
-    if (glm::dot(a, b) < 0) b = -b;
-    return glm::normalize(a * (1.0f - t) + b * t);
-}
-
-struct Aabb {
-    glm::vec3 lo{INFINITY}, hi{-INFINITY};
-    void add(const glm::vec3& p) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-    }
-    void add(const glm::vec3& p, float r) {
-        lo = glm::min(lo, p - r);
-        hi = glm::max(hi, p + r);
-    }
-    bool overlaps(const Aabb& o) const {
-        return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y && o.lo.y <= hi.y && lo.z <= o.hi.z && o.lo.z <= hi.z;
-    }
-};
-
-/// World bounds of a (non-plane) shape at one transform, grown by its margin.
-void add_shape_bounds(Aabb& b, const kernels::CollideShape& s, const glm::vec3& pos, const glm::quat& rot) {
-    if (s.shape == DRAPE_COLLIDER_SPHERE) {
-        b.add(pos, s.size.x + s.margin);
-    } else if (s.shape == DRAPE_COLLIDER_CAPSULE) {
-        const glm::vec3 axis = rot * glm::vec3(0, s.size.y, 0);
-        b.add(pos + axis, s.size.x + s.margin);
-        b.add(pos - axis, s.size.x + s.margin);
-    } else {  // box: |R| * half extents
-        const glm::mat3 r = glm::mat3_cast(rot);
-        const glm::vec3 e(std::fabs(r[0].x) * s.size.x + std::fabs(r[1].x) * s.size.y + std::fabs(r[2].x) * s.size.z,
-                          std::fabs(r[0].y) * s.size.x + std::fabs(r[1].y) * s.size.y + std::fabs(r[2].y) * s.size.z,
-                          std::fabs(r[0].z) * s.size.x + std::fabs(r[1].z) * s.size.y + std::fabs(r[2].z) * s.size.z);
-        b.lo = glm::min(b.lo, pos - e - s.margin);
-        b.hi = glm::max(b.hi, pos + e + s.margin);
-    }
-}
-
-/// Lowest signed height of the box's corners above a plane (normal n through point p).
-float lowest_above_plane(const Aabb& b, const glm::vec3& p, const glm::vec3& n) {
-    const glm::vec3 corner(n.x >= 0 ? b.lo.x : b.hi.x, n.y >= 0 ? b.lo.y : b.hi.y, n.z >= 0 ? b.lo.z : b.hi.z);
-    return glm::dot(corner - p, n);
-}
 
 }  // namespace
 
@@ -99,8 +53,17 @@ void Cloth::set_colliders(const drape_collider* colliders, uint32_t count) {
         }
     }
     ix_.colliders.swap(next);
-    ix_.shapes.reserve(DRAPE_MAX_COLLIDERS);
     if (changed) wake();
+}
+
+// ---- self-collision (the CPU step's stage: backend/cpu/cpu_collide.cpp) ---------------------
+
+void Cloth::set_self_collision(bool enabled, float thickness, float friction) {
+    if (enabled != sc_.enabled || (enabled && (thickness != sc_.thickness || friction != sc_.friction))) wake();
+    if (thickness != sc_.thickness) sc_.list_valid = false;
+    sc_.enabled = enabled;
+    sc_.thickness = thickness;
+    sc_.friction = friction;
 }
 
 // ---- sleeping -------------------------------------------------------------------------------
@@ -133,69 +96,6 @@ bool Cloth::skip_step_asleep() {
     stats_.step_ms = 0;
     stats_.sleeping = 1;
     return true;
-}
-
-// ---- per-substep hook: drag, then colliders, on the committed positions ----------------------
-
-void Cloth::interaction_substep(uint32_t sub, uint32_t substeps) {
-    const uint32_t n = topo_.particle_count;
-    Particle* x = x_.data();
-    Particle* d = d_.data();  // this substep's displacement: start = x - d
-
-    // Touch drag: 1/substeps of the step's displacement in the first substep gives the vertex
-    // the finger's velocity (offset / dt); inertia carries it the rest of the way, so a free
-    // vertex ends the step displaced by exactly the offset. (Adding a share in every substep
-    // would accumulate: 1/S + 2/S + ... = (S+1)/2 times the offset.)
-    if (sub == 0 && !ix_.drag_particles.empty()) {
-        const float part = 1.0f / float(substeps);
-        for (uint32_t i : ix_.drag_particles)
-            if (x[i].w != 0.0f) {
-                x[i] += Particle(ix_.drag_offset[i] * part, 0.0f);
-                d[i] += Particle(ix_.drag_offset[i] * part, 0.0f);
-            }
-    }
-
-    if (ix_.colliders.empty()) return;
-    // Broad phase: colliders at this substep (host's previous -> new transform, interpolated)
-    // against the bounds of the cloth's substep start and end positions.
-    Aabb cloth;
-    for (uint32_t i = 0; i < n; ++i) {
-        cloth.add(glm::vec3(x[i]));
-        cloth.add(glm::vec3(x[i]) - glm::vec3(d[i]));
-    }
-    const float t0 = float(sub) / float(substeps), t1 = float(sub + 1) / float(substeps);
-    ix_.shapes.clear();
-    for (const ColliderState& c : ix_.colliders) {
-        kernels::CollideShape s;
-        s.pos0 = c.pos_start + (c.pos_end - c.pos_start) * t0;
-        s.pos1 = sub + 1 == substeps ? c.pos_end : c.pos_start + (c.pos_end - c.pos_start) * t1;
-        s.rot0 = nlerp(c.rot_start, c.rot_end, t0);
-        s.rot1 = sub + 1 == substeps ? c.rot_end : nlerp(c.rot_start, c.rot_end, t1);
-        s.margin = c.margin;
-        s.friction = c.friction;
-        s.size = c.size;
-        s.shape = c.shape;
-        bool touches;
-        if (c.shape == DRAPE_COLLIDER_PLANE) {
-            touches = lowest_above_plane(cloth, s.pos0, s.rot0 * glm::vec3(0, 1, 0)) < s.margin ||
-                      lowest_above_plane(cloth, s.pos1, s.rot1 * glm::vec3(0, 1, 0)) < s.margin;
-        } else {
-            Aabb b;
-            add_shape_bounds(b, s, s.pos0, s.rot0);
-            add_shape_bounds(b, s, s.pos1, s.rot1);
-            touches = b.overlaps(cloth);
-        }
-        if (touches) ix_.shapes.push_back(s);
-    }
-    if (ix_.shapes.empty()) return;
-    ix_.collide_tests += uint64_t(n) * ix_.shapes.size();
-    const kernels::CollideShape* shapes = ix_.shapes.data();
-    const uint32_t count = uint32_t(ix_.shapes.size());
-    auto body = [&](uint32_t b, uint32_t e) { kernels::collide(shapes, count, x, d, b, e); };
-    if (backend_ == DRAPE_BACKEND_CPU_THREADED)
-        world_.pool().parallel_for(n, body);
-    else
-        body(0u, n);
 }
 
 void Cloth::interaction_end_step(float dt, bool rolled_back) {

@@ -1,9 +1,8 @@
 // Run-time state of what a cloth interacts with: colliders, touch drag, grabs, the
 // owner transform, and sleeping. Owned by Cloth (member ix_); the Cloth member functions that use
-// it are defined in core/interaction.cpp, and the CPU step (backend/cpu/cpu_cloth.cpp) calls
-// three hooks:
-//   skip_step_asleep() at the top, interaction_substep() after each substep's solve (on the
-//   committed positions), interaction_end_step() when the step is done.
+// it are defined in core/interaction.cpp. A step calls skip_step_asleep() first and
+// interaction_end_step() when done; the CPU step's collide stage (backend/cpu/cpu_collide.cpp)
+// applies drag and colliders after each substep's solve.
 #pragma once
 
 #include <cstdint>
@@ -12,7 +11,6 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
-#include "backend/cpu/collide.h"
 #include "drape/drape.h"
 
 namespace drape {
@@ -33,10 +31,8 @@ struct Grab {
 };
 
 struct Interaction {
-    // Colliders (drape_cloth_set_colliders). `shapes` is the per-substep list after the broad
-    // phase (capacity DRAPE_MAX_COLLIDERS, kept: no allocation in step).
+    // Colliders (drape_cloth_set_colliders).
     std::vector<ColliderState> colliders;
-    std::vector<kernels::CollideShape> shapes;
 
     // Touch drag: displacement per affected particle for the next step, spread over its substeps.
     std::vector<uint32_t> drag_particles;

@@ -1,8 +1,8 @@
 // Self-collision state of a cloth: the setting and the spatial hash's storage. Owned by
-// Cloth (member sc_); Cloth::set_self_collision and Cloth::self_collision_substep are defined in
-// core/self_collision.cpp, the kernels in backend/cpu/self_collide.h. The CPU step calls
-// self_collision_substep() after each substep's solve and tethers, before drag and colliders, and
-// only when enabled: a cloth without self-collision does no extra work.
+// Cloth (member sc_); Cloth::set_self_collision is defined in core/interaction.cpp. The CPU step's
+// self-collide stage (backend/cpu/cpu_collide.cpp, kernels in backend/cpu/self_collide.h) runs
+// after each substep's solve and tethers, before drag and colliders, and only when enabled: a
+// cloth without self-collision does no extra work.
 #pragma once
 
 #include <atomic>

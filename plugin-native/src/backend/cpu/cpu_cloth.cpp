@@ -33,6 +33,7 @@ CpuCloth::CpuCloth(World& world, drape_backend backend, Topology topology)
     kinematic_start_.resize(n);
     backup_x_.resize(n);
     backup_d_.resize(n);
+    shapes_.reserve(DRAPE_MAX_COLLIDERS);
     partials_.resize(world.pool().size());
     refresh_backend();  // the base constructor's refresh_derived ran before this class existed
 }
@@ -84,14 +85,6 @@ void CpuCloth::factor_implicit(float h) {
     implicit_.factor(topo_.nbr, params_, x_.data(), topo_.particle_count, h);
 }
 
-template <class Fn>
-void CpuCloth::for_particles(Fn&& fn) {
-    if (backend_ == DRAPE_BACKEND_CPU_THREADED)
-        world_.pool().parallel_for(topo_.particle_count, fn);
-    else
-        fn(0u, topo_.particle_count);
-}
-
 // Far from the caller's origin floats lose the cloth's detail (1e4 m: 1 mm steps), so positions
 // are held relative to origin_; once the cloth has drifted kRecentreDistance (core/params.h) from
 // it, origin_ moves by whole metres and every held position (state, pin targets, colliders, owner, the
@@ -113,23 +106,46 @@ void CpuCloth::recentre() {
     for (glm::vec3& b : sc_.built) b -= shift;
 }
 
+// The step reads like a table of contents: one function per stage (drape_stage), each run over
+// all particles before the next.
 Result CpuCloth::step(float dt) {
     if (skip_step_asleep()) return {};  // asleep -> no work (core/interaction.cpp)
     const auto t0 = std::chrono::steady_clock::now();
-    const uint32_t n = topo_.particle_count;
-    const NeighbourTable& nb = topo_.nbr;
-    const uint32_t substeps = substeps_for(dt);
-    const float h = dt / float(substeps);
-    last_h_ = h;
-    const drape_model model = drape_model(params_.model);
+    begin(dt);
+    for (uint32_t sub = 0; sub < substeps_; ++sub) {
+        const float along = float(sub + 1) / float(substeps_);  // share of the kinematic particles' move
+        predict(along);
+        solve(along);
+        if (params_.max_stretch > 0 && !kinematic_.empty()) tether();
+        if (sc_.enabled) self_collide();
+        if (!ix_.colliders.empty() || !ix_.drag_particles.empty()) collide(sub);
+        h_prev_ = h_;
+        fresh_ = false;
+    }
+    const VerifyPartial total = verify();
+    stats_.step_ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return finish(dt, total);
+}
 
+void CpuCloth::begin(float dt) {
+    // Plan: substeps and iterations from the parameters; the state backed up for a rollback.
+    const uint32_t n = topo_.particle_count;
+    substeps_ = substeps_for(dt);
+    h_ = dt / float(substeps_);
+    iterations_ = iterations_for();
+    last_h_ = h_;
     std::memcpy(backup_x_.data(), x_.data(), n * sizeof(Particle));
     std::memcpy(backup_d_.data(), d_.data(), n * sizeof(Particle));
-    const float backup_h_prev = h_prev_;
-    const bool backup_fresh = fresh_;
+    backup_h_prev_ = h_prev_;
+    backup_fresh_ = fresh_;
     for (uint32_t k : kinematic_) kinematic_start_[k] = glm::vec3(x_[k]);
 
-    kernels::SubstepContext c{};
+    // The step's constants for the kernels.
+    const NeighbourTable& nb = topo_.nbr;
+    const drape_model model = drape_model(params_.model);
+    const float h = h_;
+    kernels::SubstepContext& c = ctx_;
+    c = kernels::SubstepContext{};
     c.nbr_index = nb.index.data();
     c.nbr_rest = nb.rest.data();
     c.nbr_group = nb.group.data();
@@ -140,8 +156,7 @@ Result CpuCloth::step(float dt) {
     c.col_index = col_index_.data();
     c.col_rest = col_rest_.data();
     c.col_group = col_group_.data();
-    const uint32_t iterations = iterations_for();
-    c.lambda = model == DRAPE_MODEL_XPBD && iterations > 1 ? lambda_.data() : nullptr;
+    c.lambda = model == DRAPE_MODEL_XPBD && iterations_ > 1 ? lambda_.data() : nullptr;
     for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) {
         const float k = params_.stiffness[g];
         c.groups.stiffness[g] = k;
@@ -162,78 +177,87 @@ Result CpuCloth::step(float dt) {
         for_particles([&](uint32_t b, uint32_t e) {
             kernels::spring_coefficients<false>(c, x_.data(), slot_coef_.data(), b, e);
         });
+}
 
-    for (uint32_t sub = 0; sub < substeps; ++sub) {
-        c.h_prev = h_prev_;
-        c.h_ratio = h / h_prev_;
-        c.accel_h = fresh_ ? 0.5f * h : 0.5f * (h + h_prev_);
-        Particle* cur = x_.data();
-        Particle* disp = d_.data();
+glm::vec3 CpuCloth::kinematic_position(uint32_t k, float along) const {
+    // Kinematic particles move along a straight line from their start to their target.
+    return kinematic_start_[k] + (kinematic_target_[k] - kinematic_start_[k]) * along;
+}
+
+void CpuCloth::predict(float along) {
+    // The substep's constants, then PBD/XPBD's inertial prediction: displacements into spare_.
+    // (MASS_SPRING predicts inside its one kernel, IMPLICIT inside implicit_substep: both solve.)
+    kernels::SubstepContext& c = ctx_;
+    c.h_prev = h_prev_;
+    c.h_ratio = h_ / h_prev_;
+    c.accel_h = fresh_ ? 0.5f * h_ : 0.5f * (h_ + h_prev_);
+    if (params_.model != DRAPE_MODEL_PBD && params_.model != DRAPE_MODEL_XPBD) return;
+    Particle* cur = x_.data();
+    Particle* disp = d_.data();
+    Particle* spare = spare_.data();
+    if (params_.model == DRAPE_MODEL_PBD && params_.damping > 0)
+        for_particles([&](uint32_t b, uint32_t e) { kernels::predict<true>(c, cur, disp, spare, b, e); });
+    else
+        for_particles([&](uint32_t b, uint32_t e) { kernels::predict<false>(c, cur, disp, spare, b, e); });
+    for (uint32_t k : kinematic_) spare[k] = Particle(kinematic_position(k, along) - glm::vec3(cur[k]), 0.0f);
+}
+
+void CpuCloth::solve(float along) {
+    const kernels::SubstepContext& c = ctx_;
+    Particle* cur = x_.data();
+    Particle* disp = d_.data();
+    if (params_.model == DRAPE_MODEL_IMPLICIT) {
+        implicit_substep(ctx_, [&](uint32_t k) { return kinematic_position(k, along); });
+    } else if (params_.model == DRAPE_MODEL_MASS_SPRING) {
         Particle* spare = spare_.data();
         Particle* spare2 = spare2_.data();
-        // Kinematic particles move along a straight line from their start to their target.
-        const float along = float(sub + 1) / float(substeps);
-        auto kinematic_at = [&](uint32_t k) {
-            return kinematic_start_[k] + (kinematic_target_[k] - kinematic_start_[k]) * along;
-        };
-        if (model == DRAPE_MODEL_IMPLICIT) {
-            implicit_substep(c, kinematic_at);
-        } else if (model == DRAPE_MODEL_MASS_SPRING) {
-            for_particles([&](uint32_t b, uint32_t e) { kernels::mass_spring_step(c, cur, disp, spare, spare2, b, e); });
-            for (uint32_t k : kinematic_) {
-                spare[k] = Particle(kinematic_at(k), 0.0f);
-                spare2[k] = Particle(glm::vec3(spare[k]) - glm::vec3(cur[k]), 0.0f);
-            }
-            x_.swap(spare_);
-            d_.swap(spare2_);
-        } else {
-            // predict: displacements into spare; iterate spare <-> spare2; the last iteration
-            // also writes positions, into the displacement buffer (free after predict).
-            if (model == DRAPE_MODEL_PBD && params_.damping > 0)
-                for_particles([&](uint32_t b, uint32_t e) { kernels::predict<true>(c, cur, disp, spare, b, e); });
-            else
-                for_particles([&](uint32_t b, uint32_t e) { kernels::predict<false>(c, cur, disp, spare, b, e); });
-            for (uint32_t k : kinematic_) spare[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
-            std::vector<Particle>* in = &spare_;
-            std::vector<Particle>* out = &spare2_;
-            const bool xpbd = model == DRAPE_MODEL_XPBD;
-            const float* coef = slot_coef_.data();
-            for (uint32_t it = 0; it < iterations; ++it) {
-                const bool last = it + 1 == iterations;
-                Particle* src = in->data();
-                Particle* dst = out->data();
-                for_particles([&](uint32_t b, uint32_t e) {
-                    using kernels::constraint_iteration_simd;
-                    if (xpbd && last) constraint_iteration_simd<true, true>(c, coef, src, cur, dst, disp, b, e);
-                    else if (xpbd) constraint_iteration_simd<true, false>(c, coef, src, cur, dst, nullptr, b, e);
-                    else if (last) constraint_iteration_simd<false, true>(c, coef, src, cur, dst, disp, b, e);
-                    else constraint_iteration_simd<false, false>(c, coef, src, cur, dst, nullptr, b, e);
-                });
-                std::swap(in, out);
-            }
-            // Positions went to the old displacement buffer, displacements to `in`; the old
-            // positions become spare_ and the last scratch spare2_.
-            x_.swap(d_);
-            d_.swap(*in);
-            if (in != &spare_) spare_.swap(spare2_);
+        for_particles([&](uint32_t b, uint32_t e) { kernels::mass_spring_step(c, cur, disp, spare, spare2, b, e); });
+        for (uint32_t k : kinematic_) {
+            spare[k] = Particle(kinematic_position(k, along), 0.0f);
+            spare2[k] = Particle(glm::vec3(spare[k]) - glm::vec3(cur[k]), 0.0f);
         }
-        if (params_.max_stretch > 0 && !kinematic_.empty()) {
-            Particle* x = x_.data();
-            Particle* d = d_.data();
+        x_.swap(spare_);
+        d_.swap(spare2_);
+    } else {
+        // Iterate the predicted displacements spare_ <-> spare2_; the last iteration also writes
+        // positions, into the displacement buffer (free after predict).
+        std::vector<Particle>* in = &spare_;
+        std::vector<Particle>* out = &spare2_;
+        const bool xpbd = params_.model == DRAPE_MODEL_XPBD;
+        const float* coef = slot_coef_.data();
+        for (uint32_t it = 0; it < iterations_; ++it) {
+            const bool last = it + 1 == iterations_;
+            Particle* src = in->data();
+            Particle* dst = out->data();
             for_particles([&](uint32_t b, uint32_t e) {
-                kernels::tether(tether_anchor_.data(), tether_length_.data(), x, d, b, e);
+                using kernels::constraint_iteration_simd;
+                if (xpbd && last) constraint_iteration_simd<true, true>(c, coef, src, cur, dst, disp, b, e);
+                else if (xpbd) constraint_iteration_simd<true, false>(c, coef, src, cur, dst, nullptr, b, e);
+                else if (last) constraint_iteration_simd<false, true>(c, coef, src, cur, dst, disp, b, e);
+                else constraint_iteration_simd<false, false>(c, coef, src, cur, dst, nullptr, b, e);
             });
+            std::swap(in, out);
         }
-        if (sc_.enabled) self_collision_substep();  // core/self_collision.cpp
-        // touch drag + colliders on the committed positions (core/interaction.cpp)
-        if (!ix_.colliders.empty() || !ix_.drag_particles.empty()) interaction_substep(sub, substeps);
-        h_prev_ = h;
-        fresh_ = false;
+        // Positions went to the old displacement buffer, displacements to `in`; the old
+        // positions become spare_ and the last scratch spare2_.
+        x_.swap(d_);
+        d_.swap(*in);
+        if (in != &spare_) spare_.swap(spare2_);
     }
+}
 
-    // Verify: finite positions and no runaway strain; strain statistics on the way.
+void CpuCloth::tether() {
+    Particle* x = x_.data();
+    Particle* d = d_.data();
+    for_particles([&](uint32_t b, uint32_t e) { kernels::tether(tether_anchor_.data(), tether_length_.data(), x, d, b, e); });
+}
+
+CpuCloth::VerifyPartial CpuCloth::verify() {
+    // Finite positions and no runaway strain; strain statistics on the way.
+    const uint32_t n = topo_.particle_count;
+    const NeighbourTable& nb = topo_.nbr;
     const Particle* x = x_.data();
-    auto verify = [&](uint32_t t, uint32_t b, uint32_t e) {
+    auto verify_range = [&](uint32_t t, uint32_t b, uint32_t e) {
         VerifyPartial p{true, 0, 0, 0, 0};
         for (uint32_t i = b; i < e; ++i) {
             if (!(std::isfinite(x[i].x) && std::isfinite(x[i].y) && std::isfinite(x[i].z))) p.finite = false;
@@ -256,10 +280,10 @@ Result CpuCloth::step(float dt) {
     };
     const uint32_t parts = backend_ == DRAPE_BACKEND_CPU_THREADED ? world_.pool().size() : 1;
     if (parts == 1) {
-        verify(0, 0, n);
+        verify_range(0, 0, n);
     } else {
         world_.pool().run_on_all([&](uint32_t t) {
-            verify(t, uint32_t(uint64_t(n) * t / parts), uint32_t(uint64_t(n) * (t + 1) / parts));
+            verify_range(t, uint32_t(uint64_t(n) * t / parts), uint32_t(uint64_t(n) * (t + 1) / parts));
         });
     }
     VerifyPartial total{true, 0, 0, 0, 0};
@@ -270,23 +294,27 @@ Result CpuCloth::step(float dt) {
         total.sum_sq += partials_[t].sum_sq;
         total.count += partials_[t].count;
     }
+    return total;
+}
 
-    stats_.substeps = substeps;
-    stats_.iterations = model == DRAPE_MODEL_MASS_SPRING ? 1 : iterations;
-    stats_.step_ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - t0).count();
+Result CpuCloth::finish(float dt, const VerifyPartial& total) {
+    // Statistics; on failure the state from before the step comes back, else the step commits.
+    const uint32_t n = topo_.particle_count;
+    stats_.substeps = substeps_;
+    stats_.iterations = params_.model == DRAPE_MODEL_MASS_SPRING ? 1 : iterations_;
     const bool runaway = !(total.max_strain_all <= kRunawayStrain);
     stats_.non_finite = total.finite ? 0 : 1;
     if (!total.finite || runaway) {
         std::memcpy(x_.data(), backup_x_.data(), n * sizeof(Particle));
         std::memcpy(d_.data(), backup_d_.data(), n * sizeof(Particle));
-        h_prev_ = backup_h_prev;
-        fresh_ = backup_fresh;
+        h_prev_ = backup_h_prev_;
+        fresh_ = backup_fresh_;
         // kinematic_target_ keeps the requested pin and grab moves: the next step makes them.
         ++stats_.unstable_steps;
         interaction_end_step(dt, true);
         return {DRAPE_ERROR_UNSTABLE,
                 std::string("step diverged (") + (total.finite ? "runaway strain" : "non-finite positions") +
-                    " with " + std::to_string(substeps) + " substeps of " + std::to_string(h) +
+                    " with " + std::to_string(substeps_) + " substeps of " + std::to_string(h_) +
                     " s); the state before the step was restored. Raise substeps or lower stiffness."};
     }
     stats_.max_strain = total.max_strain;

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "backend/cpu/collide.h"
 #include "backend/cpu/implicit_solve.h"
 #include "backend/cpu/kernels.h"
 #include "core/cloth.h"
@@ -26,10 +27,46 @@ public:
     bool steps_on_pool_thread() const override { return backend_ == DRAPE_BACKEND_CPU; }
 
 private:
+    // ---- the step: one function per stage (drape_stage), in the order step() runs them ----
+    /// Plans substeps and iterations, backs up the state for a rollback, sets the step's constants.
+    void begin(float dt);
+    /// The substep's constants; PBD/XPBD: inertial prediction and kinematic targets. `along`:
+    /// share of the step the kinematic particles have moved by the substep's end.
+    void predict(float along);
+    /// The model's solve of one substep (MASS_SPRING: its whole Verlet step; IMPLICIT: predict too).
+    void solve(float along);
+    /// kernels::tether (max_stretch > 0 and kinematic particles).
+    void tether();
+    /// Self-collision (cpu_collide.cpp).
+    void self_collide();
+    /// Touch drag (first substep) and colliders (cpu_collide.cpp).
+    void collide(uint32_t sub);
+    struct VerifyPartial {
+        bool finite;
+        float max_strain_all, max_strain, sum_sq;
+        uint32_t count;
+    };
+    /// Finite positions and runaway strain over all particles, with the strain statistics.
+    VerifyPartial verify();
+    /// Statistics; rolls back a failed step, or commits (interaction bookkeeping, recentre).
+    Result finish(float dt, const VerifyPartial& total);
+
     void refresh_backend() override;
     void recentre();  // moves origin_ near the cloth, shifting every held position
+    glm::vec3 kinematic_position(uint32_t k, float along) const;
+    /// fn(begin, end) over the particles: split over the world's pool (CPU_THREADED) or one call.
     template <class Fn>
-    void for_particles(Fn&& fn);
+    void for_particles(Fn&& fn) {
+        if (backend_ == DRAPE_BACKEND_CPU_THREADED)
+            world_.pool().parallel_for(topo_.particle_count, fn);
+        else
+            fn(0u, topo_.particle_count);
+    }
+
+    // The step being taken (begin).
+    kernels::SubstepContext ctx_{};
+    uint32_t substeps_ = 0, iterations_ = 0;
+    float h_ = 0;  ///< substep, s
 
     // Scratch buffers (their roles rotate with x_ and d_).
     std::vector<Particle> spare_, spare2_;
@@ -50,13 +87,13 @@ private:
 
     std::vector<glm::vec3> kinematic_start_;  ///< kinematic particles' positions at the start of the step
 
+    /// Colliders that may touch the cloth this substep (capacity DRAPE_MAX_COLLIDERS: kept).
+    std::vector<kernels::CollideShape> shapes_;
+
     // Rollback copy and per-thread verify partials (allocated once).
     std::vector<Particle> backup_x_, backup_d_;
-    struct VerifyPartial {
-        bool finite;
-        float max_strain_all, max_strain, sum_sq;
-        uint32_t count;
-    };
+    float backup_h_prev_ = 1.0f;
+    bool backup_fresh_ = true;
     std::vector<VerifyPartial> partials_;
 };
 

@@ -55,7 +55,7 @@ inline uint32_t self_bucket(const glm::ivec3& c, uint32_t mask) {
     return ((uint32_t(c.x) * 92837111u) ^ (uint32_t(c.y) * 689287499u) ^ (uint32_t(c.z) * 283923481u)) & mask;
 }
 
-/// The hash as the gather reads it (built by Cloth::self_collision_substep, core/self_collision.cpp).
+/// The hash as the gather reads it (built by CpuCloth::self_collide, backend/cpu/cpu_collide.cpp).
 struct SelfHash {
     float inv_cell;               ///< 1 / cell size (1/m); cell size = list radius
     uint32_t mask;                ///< buckets - 1

@@ -758,7 +758,7 @@ glm::quat nlerp(const glm::quat& a, glm::quat b, float t) {
 }  // namespace
 
 uint32_t GlesCloth::build_shapes(uint32_t sub, uint32_t substeps) {
-    // The collider interpolation of Cloth::interaction_substep; its broad phase needs the cloth's
+    // The collider interpolation of CpuCloth::collide; its broad phase needs the cloth's
     // bounds, which live on the GPU, so every collider is tested (the narrow phase skips a
     // particle that cannot have touched a collider after one distance test).
     const float t0 = float(sub) / float(substeps), t1 = float(sub + 1) / float(substeps);
@@ -851,7 +851,7 @@ Result GlesCloth::gpu_step(float dt) {
     if (Result r = program(first, &p_first); !r.ok()) return r;
     if (has_tethers())  // else no tether program and no tether pass (Cloth::step's condition)
         if (Result r = program(kTether, &p_tether); !r.ok()) return r;
-    // Interaction (Cloth::interaction_substep): colliders in every substep, drag in the first.
+    // Interaction (CpuCloth::collide): colliders in every substep, drag in the first.
     // Variants: DRAPE_SHAPES = collider capacity (power of two >= 4, 0 without colliders).
     Program *p_interact_first = nullptr, *p_interact = nullptr;
     const uint32_t shape_count = uint32_t(ix_.colliders.size());
@@ -900,7 +900,7 @@ Result GlesCloth::gpu_step(float dt) {
         glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, GLsizeiptr(size_t(n) * sizeof(Particle)));
     }
     if (dragging) {
-        // This step's drag share per particle (Cloth::interaction_substep: offset / substeps).
+        // This step's drag share per particle (CpuCloth::collide: offset / substeps).
         const float part = 1.0f / float(substeps);
         drag_share_.assign(n, glm::vec3(0.0f));
         for (uint32_t i : ix_.drag_particles) drag_share_[i] = ix_.drag_offset[i] * part;

@@ -126,10 +126,10 @@ private:
     /// kernels::tether: reads state buffers x and d, writes them to out_x and out_d.
     void run_tether(Program& p, int x, int d, int out_x, int out_d);
     bool has_tethers() const { return params_.max_stretch > 0 && !kinematic_.empty(); }
-    /// Cloth::interaction_substep: drag share (first substep, `drag`) and colliders (shape_data_,
+    /// CpuCloth::collide: drag share (first substep, `drag`) and colliders (shape_data_,
     /// `shapes` of them) on x and d, written to out_x and out_d.
     void run_interact(Program& p, int x, int d, int out_x, int out_d, bool drag, uint32_t shapes);
-    /// Colliders of substep `sub` as Cloth::interaction_substep builds them (no broad phase: the
+    /// Colliders of substep `sub` as CpuCloth::collide builds them (no broad phase: the
     /// CPU does not see the GPU positions) into shape_data_ (5 vec4 each); returns their count.
     uint32_t build_shapes(uint32_t sub, uint32_t substeps);
     Result write_output();
