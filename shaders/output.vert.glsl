@@ -1,7 +1,8 @@
 #version 300 es
 // Drape GLES output pass: one vertex per caller vertex, captured by transform feedback straight
 // into the caller's vertex buffer (Unity: Mesh.GetNativeVertexBufferPtr) in the caller's layout.
-// Mirrors Cloth::read: positions of the simulated particle, area-weighted vertex normals
+// Mirrors Cloth::read: positions of the simulated particle in the caller's space (the state is
+// relative to the cloth's origin, u_origin), area-weighted vertex normals
 // (sum of unnormalised face normals cross(p1 - p0, p2 - p0) in triangle order, normalised;
 // (0,1,0) where the sum is zero).
 //
@@ -38,6 +39,7 @@ layout(std140) uniform DrapeSim {
     vec3 u_damping_ratio;       // XPBD: damping / (k h) per group, 0 where off
     vec3 u_gravity;             // m/s^2, drape_params.gravity
     vec3 u_wind;                // m/s, drape_params.wind
+    vec3 u_origin;              // m, the cloth's origin in the caller's space (Cloth::origin, whole metres, exact in float): the output pass adds it
 };
 // GENERATED END DrapeSim
 
@@ -58,7 +60,7 @@ vec3 position(int p) { return texelFetch(u_x, texel(p), 0).xyz; }
 void main() {
     int i = int(a_particle);
 #ifdef DRAPE_WRITE_POSITION
-    v_position = position(i);
+    v_position = position(i) + u_origin;  // one rounding, as Cloth::read's double sum
 #endif
 #ifdef DRAPE_WRITE_NORMAL
     int tris = int(texelFetch(u_info, texel(i), 0).z);

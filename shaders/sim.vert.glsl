@@ -26,6 +26,8 @@
 //                            (DRAPE_DRAG: a_drag = this substep's share of the drag offset, first
 //                            substep only) then kernels::collide against DRAPE_SHAPES colliders
 //                            (0: no collision code). Two outputs like MASS_SPRING: v_x, v_d
+//   DRAPE_PASS_SHIFT         the cloth's origin moved by u_shift (whole metres): v_x = x - u_shift
+//                            (Cloth::shift_origin on the GPU state; d is unchanged)
 //   DRAPE_SHAPES             capacity of u_shapes (colliders, 5 vec4 each: kernels::CollideShape)
 //   DRAPE_DASHPOT            predict with PBD's explicit dashpots
 //   DRAPE_XPBD               constraint pass is XPBD (lambdas ride in the iterate record), else PBD
@@ -42,7 +44,7 @@
 // floatBitsToUint(rest), group, 0); the particle table texel i = (neighbour count, active springs,
 // 0, 0). All textures are u_tex_width texels wide (row-major).
 #if !defined(DRAPE_PASS_MASS_SPRING) && !defined(DRAPE_PASS_PREDICT) && !defined(DRAPE_PASS_CONSTRAINT) && \
-    !defined(DRAPE_PASS_TETHER) && !defined(DRAPE_PASS_INTERACT)
+    !defined(DRAPE_PASS_TETHER) && !defined(DRAPE_PASS_INTERACT) && !defined(DRAPE_PASS_SHIFT)
 #define DRAPE_PASS_MASS_SPRING 1
 #endif
 #ifndef DRAPE_SLOTS
@@ -79,12 +81,16 @@ layout(std140) uniform DrapeSim {
     vec3 u_damping_ratio;       // XPBD: damping / (k h) per group, 0 where off
     vec3 u_gravity;             // m/s^2, drape_params.gravity
     vec3 u_wind;                // m/s, drape_params.wind
+    vec3 u_origin;              // m, the cloth's origin in the caller's space (Cloth::origin, whole metres, exact in float): the output pass adds it
 };
 // GENERATED END DrapeSim
 // This substep's numbers (computed on the CPU as Cloth::step does, so the shader sees the same bits):
 // x = 1 / h_prev, y = h / h_prev (SubstepContext::h_ratio), z = accel_h, w = kinematic path fraction
 // at the end of the substep.
 uniform vec4 u_substep;
+#ifdef DRAPE_PASS_SHIFT
+uniform vec3 u_shift;
+#endif
 
 in vec4 a_x;                        // own record: position x (MS, PREDICT) / displacement iterate
 in vec4 a_aux;                      // own: displacement d (MS, PREDICT, TETHER) or substep start x (CONSTRAINT)
@@ -107,10 +113,12 @@ in vec3 a_ktarget;                  // pin target at the end of the step
 #endif
 
 #if defined(DRAPE_PASS_MASS_SPRING) || defined(DRAPE_COMMIT) || defined(DRAPE_PASS_TETHER) || \
-    defined(DRAPE_PASS_INTERACT)
+    defined(DRAPE_PASS_INTERACT) || defined(DRAPE_PASS_SHIFT)
 out vec4 v_x;                       // new position record
 #endif
+#ifndef DRAPE_PASS_SHIFT
 out vec4 v_d;                       // new displacement (state or iterate) record
+#endif
 #if defined(DRAPE_XPBD) && (defined(DRAPE_PASS_PREDICT) || (defined(DRAPE_PASS_CONSTRAINT) && !defined(DRAPE_COMMIT)))
 #if DRAPE_LAMBDA_VEC4 >= 1
 out vec4 v_lambda0;
@@ -252,6 +260,10 @@ vec3 kinematic_at() { return a_kstart + (a_ktarget - a_kstart) * u_substep.w; }
 #endif
 
 void main() {
+#ifdef DRAPE_PASS_SHIFT
+    v_x = vec4(a_x.xyz - u_shift, a_x.w);
+    return;
+#else
     int i = gl_VertexID;
     vec3 xi = a_x.xyz;
     float wi = a_x.w;
@@ -538,4 +550,5 @@ void main() {
 #endif
 #endif
 #endif
+#endif  // DRAPE_PASS_SHIFT
 }

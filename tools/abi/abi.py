@@ -297,4 +297,6 @@ UNIFORM_BLOCK = dict(glsl="DrapeSim", cpp="SimUniforms", binding=0,
     ufield("damping_ratio", "vec3", "XPBD: damping / (k h) per group, 0 where off"),
     ufield("gravity", "vec3", "drape_params.gravity", unit="m/s^2"),
     ufield("wind", "vec3", "drape_params.wind", unit="m/s"),
+    ufield("origin", "vec3", "the cloth's origin in the caller's space (Cloth::origin, whole metres, exact in float): "
+                             "the output pass adds it", unit="m"),
 ])

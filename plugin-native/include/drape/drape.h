@@ -540,7 +540,10 @@ DRAPE_API drape_status drape_cloth_set_owner(drape_cloth* cloth, const drape_own
  * energies, and max/rms strain and non_finite from that read-back state; step_ms is the time to
  * record the GL commands; there is no divergence check or rollback on the GPU (unstable_steps
  * stays 0). Setters that need the current positions (inverse masses, new pins, releasing pins,
- * velocities) read back too. */
+ * velocities) read back too.
+ * Like a CPU cloth, a GLES cloth simulates relative to its own origin and takes and returns
+ * positions in the caller's space (the output buffer too). It re-centres without reading back:
+ * from its first pinned vertex's target, or, without pins, from the state last read back. */
 
 /** Output target of a GLES cloth: after every step (and now) the GPU writes positions and/or
  *  normals of every caller vertex into GL buffer `gl_buffer` (Unity: Mesh.GetNativeVertexBufferPtr)

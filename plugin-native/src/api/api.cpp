@@ -359,10 +359,9 @@ void to_local(const Cloth& c, const float* in, float* out) {
     for (int k = 0; k < 3; ++k) out[k] = float(double(in[k]) - o[k]);
 }
 
-// Origin of a new CPU cloth whose first vertex is at p: 0 near the caller's origin, else p in
-// whole metres (the GLES backend's shaders work in simulation space: its origin stays 0).
-glm::dvec3 initial_origin(uint32_t backend, const float* p) {
-    if (backend == DRAPE_BACKEND_GLES) return glm::dvec3(0.0);
+// Origin of a new cloth whose first vertex is at p: 0 near the caller's origin, else p in whole
+// metres.
+glm::dvec3 initial_origin(const float* p) {
     if (std::fabs(p[0]) <= kRecentreDistance && std::fabs(p[1]) <= kRecentreDistance &&
         std::fabs(p[2]) <= kRecentreDistance)
         return glm::dvec3(0.0);
@@ -371,20 +370,6 @@ glm::dvec3 initial_origin(uint32_t backend, const float* p) {
 
 void xyz_to_local(const Cloth& c, std::vector<float>& xyz) {
     for (size_t v = 0; v + 2 < xyz.size(); v += 3) to_local(c, &xyz[v], &xyz[v]);
-}
-
-// Positions written by Cloth::read are local: move them to the caller's space, relative to
-// layout->origin (positions - origin, computed in double).
-void positions_out(const Cloth& c, const drape_vertex_layout& layout, void* dst) {
-    const glm::dvec3 shift = c.origin() - glm::dvec3(layout.origin[0], layout.origin[1], layout.origin[2]);
-    if (layout.position_offset < 0 || shift == glm::dvec3(0.0)) return;
-    char* bytes = static_cast<char*>(dst) + layout.position_offset;
-    for (uint32_t v = 0; v < c.topology().vertex_count; ++v) {
-        float p[3];
-        std::memcpy(p, bytes + size_t(v) * layout.stride, sizeof p);
-        for (int k = 0; k < 3; ++k) p[k] = float(double(p[k]) + shift[k]);
-        std::memcpy(bytes + size_t(v) * layout.stride, p, sizeof p);
-    }
 }
 
 }  // namespace
@@ -458,7 +443,7 @@ drape_status drape_cloth_create_grid(drape_world* world, const drape_cloth_desc*
     if (drape_status s = check_grid(grid)) return s;
     return guarded([&] {
         // Cooked and simulated around the cloth's own origin (float-safe anywhere).
-        const glm::dvec3 origin = initial_origin(desc->backend, grid->origin);
+        const glm::dvec3 origin = initial_origin(grid->origin);
         drape_grid_desc local = *grid;
         for (int k = 0; k < 3; ++k) local.origin[k] = float(double(grid->origin[k]) - origin[k]);
         return finish_create(world, desc, cook_grid(local, desc->total_mass), out_cloth, origin);
@@ -474,7 +459,7 @@ drape_status drape_cloth_create_mesh(drape_world* world, const drape_cloth_desc*
     DRAPE_REQUIRE(out_cloth != nullptr, DRAPE_ERROR_NULL_POINTER, "out_cloth is NULL");
     if (drape_status s = check_mesh(mesh)) return s;
     return guarded([&] {
-        const glm::dvec3 origin = initial_origin(desc->backend, mesh->positions);  // see create_grid
+        const glm::dvec3 origin = initial_origin(mesh->positions);  // see create_grid
         drape_mesh_desc local = *mesh;
         std::vector<float> shifted;
         if (origin != glm::dvec3(0.0)) {
@@ -557,10 +542,12 @@ drape_status drape_cloth_set_pins(drape_cloth* cloth, const drape_pin* pins, uin
             const drape_pin& pin = pins[k];
             all_pinned = c->is_pinned(pin.vertex);
         }
-        std::vector<drape_pin> copy(std::move(current));
-        for (drape_pin& pin : copy) to_local(*c, pin.position, pin.position);
+        // Positions become local when the edit is applied: a GLES cloth may re-centre before then.
         return apply_edit(as_cloth(cloth), all_pinned ? Access::NoState : Access::ReadsState,
-                          [copy](Cloth& c) { c.set_pins(copy.data(), uint32_t(copy.size())); });
+                          [copy = std::move(current)](Cloth& c) mutable {
+                              for (drape_pin& pin : copy) to_local(c, pin.position, pin.position);
+                              c.set_pins(copy.data(), uint32_t(copy.size()));
+                          });
     });
 }
 
@@ -583,8 +570,10 @@ drape_status drape_cloth_set_positions(drape_cloth* cloth, const float* position
     if (drape_status s = check_xyz_array(positions, count, "position")) return s;
     return guarded([&] {
         std::vector<float> copy(positions, positions + size_t(count) * 3);
-        xyz_to_local(*as_cloth(cloth), copy);
-        return apply_edit(as_cloth(cloth), Access::WritesState, [copy](Cloth& c) { c.set_positions(copy.data()); });
+        return apply_edit(as_cloth(cloth), Access::WritesState, [copy](Cloth& c) mutable {
+            xyz_to_local(c, copy);  // when applied (see set_pins)
+            c.set_positions(copy.data());
+        });
     });
 }
 
@@ -615,9 +604,7 @@ drape_status drape_cloth_read(const drape_cloth* cloth, const drape_vertex_layou
     DRAPE_REQUIRE(dst_size >= needed, DRAPE_ERROR_BUFFER_TOO_SMALL,
                   "dst_size is " + std::to_string(dst_size) + " bytes, the layout needs " + std::to_string(needed));
     return guarded([&] {
-        Result r = as_cloth(cloth)->read(*layout, dst);
-        if (r.ok()) positions_out(*as_cloth(cloth), *layout, dst);
-        return status_of(r);
+        return status_of(as_cloth(cloth)->read(*layout, dst));
     });
 }
 
@@ -708,7 +695,7 @@ drape_status drape_cloth_set_output_buffer(drape_cloth* cloth, uint32_t gl_buffe
         if (drape_status s = check_layout(layout)) return s;
         DRAPE_REQUIRE(layout->origin[0] == 0 && layout->origin[1] == 0 && layout->origin[2] == 0,
                       DRAPE_ERROR_INVALID_ARGUMENT,
-                      "layout->origin must be 0 for a GL output buffer (the GPU writes simulation space)");
+                      "layout->origin must be 0 for a GL output buffer (the GPU writes the caller's space)");
     }
     const drape_vertex_layout l = layout ? *layout : drape_vertex_layout{sizeof(drape_vertex_layout), 12, 0, -1, {0, 0, 0}};
     return guarded([&] { return status_of(as_cloth(cloth)->set_output(gl_buffer, l)); });
@@ -817,10 +804,10 @@ drape_status drape_cloth_set_colliders(drape_cloth* cloth, const drape_collider*
     }
     return guarded([&] {
         // Copied: a GLES cloth on Unity's main thread applies it on the render thread.
-        std::vector<drape_collider> copy(std::move(current));
-        for (drape_collider& col : copy) to_local(*as_cloth(cloth), col.position, col.position);
-        return apply_edit(as_cloth(cloth), Access::NoState,
-                          [copy](Cloth& c) { c.set_colliders(copy.data(), uint32_t(copy.size())); });
+        return apply_edit(as_cloth(cloth), Access::NoState, [copy = std::move(current)](Cloth& c) mutable {
+            for (drape_collider& col : copy) to_local(c, col.position, col.position);  // when applied (see set_pins)
+            c.set_colliders(copy.data(), uint32_t(copy.size()));
+        });
     });
 }
 

@@ -190,12 +190,40 @@ void Cloth::read_cpu_copy(const drape_vertex_layout& layout, void* dst) const {
             normals_[i] = len > 0 ? normals_[i] / len : glm::vec3(0, 1, 0);
         }
     }
+    // Local positions -> the caller's space relative to layout.origin, in double.
+    const glm::dvec3 shift = origin_ - glm::dvec3(layout.origin[0], layout.origin[1], layout.origin[2]);
     for (uint32_t v = 0; v < topo_.vertex_count; ++v) {
         const uint32_t i = topo_.vertex_to_particle[v];
         uint8_t* rec = bytes + size_t(v) * layout.stride;
-        if (layout.position_offset >= 0) std::memcpy(rec + layout.position_offset, &x[i], 12);
+        if (layout.position_offset >= 0) {
+            const glm::vec3 p = glm::vec3(glm::dvec3(glm::vec3(x[i])) + shift);
+            std::memcpy(rec + layout.position_offset, &p, 12);
+        }
         if (layout.normal_offset >= 0) std::memcpy(rec + layout.normal_offset, &normals_[i], 12);
     }
+}
+
+// Far from the caller's origin floats lose the cloth's detail (1e4 m: 1 mm steps), so positions
+// are held relative to origin_; once the cloth has drifted kRecentreDistance (core/params.h) from
+// it, origin_ moves by whole metres and every held position (state, pin targets, colliders, owner, the
+// self-collision reference) shifts back by the same exact amount.
+glm::vec3 Cloth::recentre_shift(const glm::vec3& reference) {
+    if (!(std::fabs(reference.x) > kRecentreDistance || std::fabs(reference.y) > kRecentreDistance ||
+          std::fabs(reference.z) > kRecentreDistance))
+        return glm::vec3(0.0f);
+    return glm::round(reference);
+}
+
+void Cloth::shift_origin(const glm::vec3& shift) {
+    origin_ += glm::dvec3(shift);
+    for (Particle& p : x_) p = Particle(glm::vec3(p) - shift, p.w);
+    for (glm::vec3& t : kinematic_target_) t -= shift;
+    for (ColliderState& c : ix_.colliders) {
+        c.pos_start -= shift;
+        c.pos_end -= shift;
+    }
+    ix_.owner_pos -= shift;
+    for (glm::vec3& b : sc_.built) b -= shift;
 }
 
 void Cloth::stats_of_cpu_copy(drape_stats* out) const {

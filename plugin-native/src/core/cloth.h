@@ -54,7 +54,8 @@ public:
     virtual Result step(float dt) = 0;
     /// Applies a setter (fn, on this cloth's shared part) now, or where the backend's state lives.
     virtual Result edit(Access access, std::function<void(Cloth&)> fn) = 0;
-    /// Writes positions/normals per caller vertex. Layout and size already validated.
+    /// Writes normals and positions per caller vertex, positions in the caller's space relative to
+    /// layout.origin. Layout and size already validated.
     virtual Result read(const drape_vertex_layout& layout, void* dst) = 0;
     virtual Result stats(drape_stats* out) = 0;
     /// Output target: GL buffer name (0 = none) with a layout already validated by the API.
@@ -110,13 +111,16 @@ public:
 
     /// The point the cloth's coordinates are measured from, in the caller's space, m. Every
     /// position held by the cloth is relative to it (float precision does not depend on where the
-    /// cloth is); the C ABI converts positions in and out. Set at creation; a CPU step moves it
-    /// in whole metres when the cloth has drifted (recentre).
+    /// cloth is); the C ABI converts positions in (when an edit is applied, so a GLES cloth whose
+    /// render thread re-centres in between still gets them right) and Cloth::read converts them
+    /// out. Set at creation; a step moves it in whole metres when the cloth has drifted
+    /// (recentre_shift, shift_origin).
     const glm::dvec3& origin() const { return origin_; }
     void set_origin(const glm::dvec3& origin) { origin_ = origin; }
 
 protected:
-    /// Positions/normals of the CPU copy per caller vertex.
+    /// Positions (caller's space, relative to layout.origin, computed in double) and normals of the
+    /// CPU copy per caller vertex.
     void read_cpu_copy(const drape_vertex_layout& layout, void* dst) const;
     /// stats_ plus the energies of the CPU copy.
     void stats_of_cpu_copy(drape_stats* out) const;
@@ -124,6 +128,12 @@ protected:
     void refresh_derived();  // after params or masses change
     /// The backend's own data derived from params and masses (refresh_derived ends with it).
     virtual void refresh_backend() {}
+    /// Whole-metre shift that brings `reference` (a local position) back near the origin; zero
+    /// while it is within kRecentreDistance (core/params.h) on every axis.
+    static glm::vec3 recentre_shift(const glm::vec3& reference);
+    /// origin_ += shift, every position held here (CPU copy, pin targets, colliders, owner,
+    /// self-collision reference) -= shift.
+    void shift_origin(const glm::vec3& shift);
     glm::dvec3 origin_{0.0};
     // Step bookkeeping every backend does (core/interaction.cpp): asleep -> no step; after a step,
     // colliders advance, drag is consumed and the sleep check runs.

@@ -85,25 +85,10 @@ void CpuCloth::factor_implicit(float h) {
     implicit_.factor(topo_.nbr, params_, x_.data(), topo_.particle_count, h);
 }
 
-// Far from the caller's origin floats lose the cloth's detail (1e4 m: 1 mm steps), so positions
-// are held relative to origin_; once the cloth has drifted kRecentreDistance (core/params.h) from
-// it, origin_ moves by whole metres and every held position (state, pin targets, colliders, owner, the
-// self-collision reference) shifts back by the same exact amount.
+// Re-centred from particle 0 (Cloth::recentre_shift).
 void CpuCloth::recentre() {
-    const glm::vec3 x0 = glm::vec3(x_[0]);
-    if (!(std::fabs(x0.x) > kRecentreDistance || std::fabs(x0.y) > kRecentreDistance ||
-          std::fabs(x0.z) > kRecentreDistance))
-        return;
-    const glm::vec3 shift = glm::round(x0);
-    origin_ += glm::dvec3(shift);
-    for (Particle& p : x_) p = Particle(glm::vec3(p) - shift, p.w);
-    for (glm::vec3& t : kinematic_target_) t -= shift;
-    for (ColliderState& c : ix_.colliders) {
-        c.pos_start -= shift;
-        c.pos_end -= shift;
-    }
-    ix_.owner_pos -= shift;
-    for (glm::vec3& b : sc_.built) b -= shift;
+    const glm::vec3 shift = recentre_shift(glm::vec3(x_[0]));
+    if (shift != glm::vec3(0.0f)) shift_origin(shift);
 }
 
 // The step reads like a table of contents: one function per stage (drape_stage), each run over

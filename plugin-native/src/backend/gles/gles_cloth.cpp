@@ -25,10 +25,10 @@ constexpr uint32_t kTexWidth = 1024;
 /// XPBD lambdas ride in the record as vec4s; sim.vert.glsl declares up to 8 (32 slots).
 constexpr uint32_t kMaxLambdaVec4 = 8;
 
-enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3, kTether = 4, kInteract = 5 };  // kCommit: last iteration
-// Uniforms outside the DrapeSim block (sim_uniforms.h): per substep or per collider set.
-enum Uniform { uSubstep, uShapes, uShapeCount, kUniformCount };
-const char* const kUniformNames[kUniformCount] = {"u_substep", "u_shapes", "u_shape_count"};
+enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3, kTether = 4, kInteract = 5, kShift = 6 };  // kCommit: last iteration
+// Uniforms outside the DrapeSim block (sim_uniforms.h): per substep, per collider set, per shift.
+enum Uniform { uSubstep, uShapes, uShapeCount, uShift, kUniformCount };
+const char* const kUniformNames[kUniformCount] = {"u_substep", "u_shapes", "u_shape_count", "u_shift"};
 // Attribute locations (bound before linking).
 enum Attrib {
     aX = 0, aAux = 1, aKStart = 2, aKTarget = 3, aLambda0 = 4, aTetherAnchor = 12, aTetherLength = 13, aDrag = 14,
@@ -547,6 +547,7 @@ const std::string& GlesCloth::variant_defines(int pass) const {
     if (pass == kConstraint || pass == kCommit) d += "#define DRAPE_PASS_CONSTRAINT 1\n";
     if (pass == kCommit) d += "#define DRAPE_COMMIT 1\n";
     if (pass == kTether) d += "#define DRAPE_PASS_TETHER 1\n";
+    if (pass == kShift) d += "#define DRAPE_PASS_SHIFT 1\n";
     if (pass == kInteract) {
         d += "#define DRAPE_PASS_INTERACT 1\n";
         if (drag_variant_) d += "#define DRAPE_DRAG 1\n";
@@ -570,6 +571,7 @@ Result GlesCloth::program(int pass, Program** out) {
         const bool two_outputs = pass == kMassSpring || pass == kCommit || pass == kTether || pass == kInteract;
         std::vector<std::string> varyings;
         if (two_outputs) varyings = {"v_x", "v_d"};
+        else if (pass == kShift) varyings = {"v_x"};
         else varyings = {"v_d"};
         const bool xpbd = params_.model == DRAPE_MODEL_XPBD && (pass == kPredict || pass == kConstraint);
         if (xpbd)
@@ -658,6 +660,7 @@ void GlesCloth::use_uniforms(float h) {
     for (int k = 0; k < 3; ++k) {
         u.gravity[k] = params_.gravity[k];
         u.wind[k] = params_.wind[k];
+        u.origin[k] = float(origin_[k]);  // whole metres within 1e6 m: exact
     }
     if (!uniforms_uploaded_ || std::memcmp(&u, &uniforms_, sizeof u) != 0) {
         glBindBuffer(GL_UNIFORM_BUFFER, gl_.uniforms);
@@ -717,6 +720,30 @@ void GlesCloth::run_pass(Program& p, int x, int aux, int out, int out2, bool con
     if (out2 >= 0) glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, 0);
     refresh_texture(out);
     if (out2 >= 0) refresh_texture(out2);
+}
+
+Result GlesCloth::shift_gpu_state(const glm::vec3& shift) {
+    Program* p = nullptr;
+    if (Result r = program(kShift, &p); !r.ok()) return r;
+    const uint32_t n = topo_.particle_count;
+    constexpr GLsizei kState = GLsizei(sizeof(Particle));
+    int& cur = g_[0];
+    int& spare = g_[2];
+    glUseProgram(p->id);
+    glUniform3fv(p->u[uShift], 1, &shift.x);
+    glBindVertexArray(gl_.vao);
+    for (int a = 0; a < kMaxAttribs; ++a) glDisableVertexAttribArray(GLuint(a));
+    glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[cur]);
+    glEnableVertexAttribArray(aX);
+    glVertexAttribPointer(aX, 4, GL_FLOAT, GL_FALSE, kState, nullptr);
+    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[spare], 0, GLsizeiptr(size_t(n) * kState));
+    glBeginTransformFeedback(GL_POINTS);
+    glDrawArrays(GL_POINTS, 0, GLsizei(n));
+    glEndTransformFeedback();
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    refresh_texture(spare);
+    std::swap(cur, spare);
+    return {};
 }
 
 void GlesCloth::run_tether(Program& p, int x, int d, int out_x, int out_d) {
@@ -961,6 +988,16 @@ Result GlesCloth::gpu_step(float dt) {
     }
     gpu_newer_ = true;
     interaction_end_step(dt, false);  // colliders advance, drag consumed (sleep is CPU-only)
+    // Re-centre as CpuCloth::step does, without reading back: kinematic particles end the step on
+    // their targets, which the CPU holds; a cloth without any decides from its last read-back copy
+    // (shifted along with the state, so it stays consistent).
+    const glm::vec3 shift = recentre_shift(kinematic_.empty() ? glm::vec3(x_[0])
+                                                             : kinematic_target_[kinematic_[0]]);
+    if (shift != glm::vec3(0.0f)) {
+        if (Result r = shift_gpu_state(shift); !r.ok()) return r;
+        shift_origin(shift);
+        targets_dirty_ = true;
+    }
     Result r = write_output();
     stats_.substeps = substeps;
     stats_.iterations = model == DRAPE_MODEL_MASS_SPRING ? 1 : iterations_for();

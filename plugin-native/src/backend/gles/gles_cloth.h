@@ -16,6 +16,8 @@
 //   tethers: per particle (anchor index, length bits), uploaded when they change; the tether pass
 //     (one more transform-feedback pass per substep, x and d into the spare pair) runs only when
 //     the cloth has tethers (max_stretch > 0 and kinematic particles), as on the CPU.
+// Positions on the GPU are local, relative to Cloth::origin as on the CPU (float-safe far from the
+// caller's origin); the output pass adds the origin, and re-centring shifts them in a GPU pass.
 // Nothing is read back on the step path; pull() (explicit readback, get_stats, setters that need
 // the current state) maps the two state buffers (x, d) once.
 //
@@ -105,7 +107,7 @@ private:
     };
     struct Program {
         GLuint id = 0;
-        GLint u[3] = {};  ///< locations of kUniformNames (gles_cloth.cpp)
+        GLint u[4] = {};  ///< locations of kUniformNames (gles_cloth.cpp)
     };
 
     Result ensure_gl();
@@ -123,6 +125,8 @@ private:
     /// One transform-feedback pass over the particles: reads buffers x and aux, writes `out` (and
     /// `out2` >= 0 for the two-output passes: out gets v_x, out2 v_d). sub: u_substep.
     void run_pass(Program& p, int x, int aux, int out, int out2, bool constraint, const glm::vec4& sub);
+    /// Cloth::shift_origin on the GPU positions: x - shift into the spare buffer, which becomes x.
+    Result shift_gpu_state(const glm::vec3& shift);
     /// kernels::tether: reads state buffers x and d, writes them to out_x and out_d.
     void run_tether(Program& p, int x, int d, int out_x, int out_d);
     bool has_tethers() const { return params_.max_stretch > 0 && !kinematic_.empty(); }

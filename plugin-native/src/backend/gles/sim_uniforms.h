@@ -29,8 +29,10 @@ struct SimUniforms {
     uint32_t pad4_[1];
     float wind[3];  ///< m/s, drape_params.wind
     uint32_t pad5_[1];
+    float origin[3];  ///< m, the cloth's origin in the caller's space (Cloth::origin, whole metres, exact in float): the output pass adds it
+    uint32_t pad6_[1];
 };
-static_assert(sizeof(SimUniforms) == 112, "std140 size");
+static_assert(sizeof(SimUniforms) == 128, "std140 size");
 static_assert(offsetof(SimUniforms, damping) == 0, "std140 offset");
 static_assert(offsetof(SimUniforms, air_drag) == 4, "std140 offset");
 static_assert(offsetof(SimUniforms, h) == 8, "std140 offset");
@@ -41,5 +43,6 @@ static_assert(offsetof(SimUniforms, compliance) == 48, "std140 offset");
 static_assert(offsetof(SimUniforms, damping_ratio) == 64, "std140 offset");
 static_assert(offsetof(SimUniforms, gravity) == 80, "std140 offset");
 static_assert(offsetof(SimUniforms, wind) == 96, "std140 offset");
+static_assert(offsetof(SimUniforms, origin) == 112, "std140 offset");
 
 }  // namespace drape::gles
