@@ -8,9 +8,15 @@
 #include <GLES3/gl3.h>
 #include <gtest/gtest.h>
 
+#include <condition_variable>
 #include <cstdlib>
 #include <cstring>
+#include <deque>
+#include <functional>
+#include <future>
+#include <mutex>
 #include <string>
+#include <thread>
 
 namespace drape_test {
 
@@ -68,6 +74,51 @@ private:
     EGLDisplay display_ = EGL_NO_DISPLAY;
     EGLContext context_ = EGL_NO_CONTEXT;
     GLuint fbo_ = 0, rbo_ = 0;
+};
+
+/// A thread owning the GL context (Unity's render thread); run() executes a job there and waits for it.
+class RenderThread {
+public:
+    RenderThread() : thread_([this] { loop(); }) {}
+    ~RenderThread() {
+        {
+            std::lock_guard<std::mutex> lock(m_);
+            quit_ = true;
+        }
+        cv_.notify_all();
+        thread_.join();
+    }
+    template <class Fn>
+    auto run(Fn fn) -> decltype(fn()) {
+        std::packaged_task<decltype(fn())()> task(std::move(fn));
+        auto result = task.get_future();
+        {
+            std::lock_guard<std::mutex> lock(m_);
+            jobs_.emplace_back([&task] { task(); });
+        }
+        cv_.notify_all();
+        return result.get();
+    }
+
+private:
+    void loop() {
+        for (;;) {
+            std::function<void()> job;
+            {
+                std::unique_lock<std::mutex> lock(m_);
+                cv_.wait(lock, [this] { return quit_ || !jobs_.empty(); });
+                if (jobs_.empty()) return;
+                job = std::move(jobs_.front());
+                jobs_.pop_front();
+            }
+            job();
+        }
+    }
+    std::mutex m_;
+    std::condition_variable cv_;
+    std::deque<std::function<void()>> jobs_;
+    bool quit_ = false;
+    std::thread thread_;
 };
 
 inline bool running_in_ci() {

@@ -3,13 +3,6 @@
 // device events and the render event, and a "main thread" (the test thread, no context) that only
 // makes Drape calls: load -> device init -> per-frame steps + render events -> destroy ->
 // device shutdown -> unload.
-#include <condition_variable>
-#include <deque>
-#include <functional>
-#include <future>
-#include <mutex>
-#include <thread>
-
 #include "drape_test_util.h"
 #include "gles_test_util.h"
 
@@ -51,51 +44,6 @@ FakeInterfaces g_interfaces{nullptr, nullptr,
                                 return nullptr;
                             },
                             nullptr};
-
-/// A thread owning the GL context; run() executes a job there and waits for it.
-class RenderThread {
-public:
-    RenderThread() : thread_([this] { loop(); }) {}
-    ~RenderThread() {
-        {
-            std::lock_guard<std::mutex> lock(m_);
-            quit_ = true;
-        }
-        cv_.notify_all();
-        thread_.join();
-    }
-    template <class Fn>
-    auto run(Fn fn) -> decltype(fn()) {
-        std::packaged_task<decltype(fn())()> task(std::move(fn));
-        auto result = task.get_future();
-        {
-            std::lock_guard<std::mutex> lock(m_);
-            jobs_.emplace_back([&task] { task(); });
-        }
-        cv_.notify_all();
-        return result.get();
-    }
-
-private:
-    void loop() {
-        for (;;) {
-            std::function<void()> job;
-            {
-                std::unique_lock<std::mutex> lock(m_);
-                cv_.wait(lock, [this] { return quit_ || !jobs_.empty(); });
-                if (jobs_.empty()) return;
-                job = std::move(jobs_.front());
-                jobs_.pop_front();
-            }
-            job();
-        }
-    }
-    std::mutex m_;
-    std::condition_variable cv_;
-    std::deque<std::function<void()>> jobs_;
-    bool quit_ = false;
-    std::thread thread_;
-};
 
 }  // namespace
 
