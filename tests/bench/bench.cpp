@@ -3,7 +3,7 @@
 // files into --out; tests/bench/plot.py turns them into PNGs and REPORT.md.
 //
 //   drape_bench [--quick] [--out DIR] [--only a,b,...] [--threads N]
-//   parts: throughput, threads, precision, stress, vibration
+//   parts: throughput, threads, precision, rest, stress, vibration
 //
 // Timings are wall-clock medians over repeated steps of one run on a shared machine; they are
 // numbers to compare within one run, never assertions.
@@ -21,6 +21,7 @@
 #include <sstream>
 #include <string>
 #include <sys/stat.h>
+#include <ctime>
 #include <unistd.h>
 #include <vector>
 
@@ -64,7 +65,7 @@ private:
     FILE* f_;
 };
 
-/// One line rewritten in place on a terminal; every 10% as its own line in a log.
+/// One line rewritten in place on a terminal; in a log, a line every 10% or 20 s.
 class Progress {
 public:
     void start(const std::string& phase, int total) {
@@ -86,14 +87,16 @@ private:
     void show(const std::string& label) {
         const double t = std::chrono::duration<double>(Clock::now() - t0_).count();
         const int decile = 10 * done_ / total_;
-        if (!tty_ && decile == last_decile_) return;
+        if (!tty_ && decile == last_decile_ && t < last_line_ + 20) return;
         last_decile_ = decile;
+        last_line_ = t;
         std::fprintf(stderr, "%s[drape_bench %6.1fs] %-10s %3d/%-3d %-44.44s%s", tty_ ? "\r" : "", t, phase_.c_str(),
                      done_, total_, label.c_str(), tty_ ? "" : "\n");
         std::fflush(stderr);
     }
     std::string phase_;
     int total_ = 1, done_ = 0, last_decile_ = -1;
+    double last_line_ = 0;
     bool tty_ = isatty(2) != 0;
     Clock::time_point t0_ = Clock::now();
 };
@@ -182,6 +185,23 @@ struct GridSpec {
     uint32_t threads = 2;
 };
 
+/// The library's description of the grid `s`.
+void describe(const GridSpec& s, drape_cloth_desc* cd, drape_grid_desc* g) {
+    *cd = drape_cloth_desc{};
+    cd->struct_size = sizeof *cd;
+    cd->backend = s.backend;
+    cd->total_mass = float(s.mass);
+    *g = drape_grid_desc{};
+    g->struct_size = sizeof *g;
+    g->columns = s.cols;
+    g->rows = s.rows;
+    g->width = float(s.width);
+    g->height = float(s.height);
+    g->axis_u[0] = 1.0f;
+    if (s.vertical) g->axis_v[1] = -1.0f;
+    else g->axis_v[2] = -1.0f;
+}
+
 /// Uniform particle masses (set explicitly, so the double-precision reference is the same
 /// system); pinned vertices get inverse mass 0 where they are.
 std::unique_ptr<Sim> make_grid(const GridSpec& s) {
@@ -190,19 +210,9 @@ std::unique_ptr<Sim> make_grid(const GridSpec& s) {
     wd.struct_size = sizeof wd;
     wd.thread_count = s.threads;
     die_on(drape_world_create(&wd, &sim->world), "drape_world_create");
-    drape_cloth_desc cd{};
-    cd.struct_size = sizeof cd;
-    cd.backend = s.backend;
-    cd.total_mass = float(s.mass);
-    drape_grid_desc g{};
-    g.struct_size = sizeof g;
-    g.columns = s.cols;
-    g.rows = s.rows;
-    g.width = float(s.width);
-    g.height = float(s.height);
-    g.axis_u[0] = 1.0f;
-    if (s.vertical) g.axis_v[1] = -1.0f;
-    else g.axis_v[2] = -1.0f;
+    drape_cloth_desc cd;
+    drape_grid_desc g;
+    describe(s, &cd, &g);
     die_on(drape_cloth_create_grid(sim->world, &cd, &g, &sim->cloth), "drape_cloth_create_grid");
     sim->cols = s.cols;
     sim->rows = s.rows;
@@ -339,31 +349,55 @@ struct Timing {
     bool ok = true;
 };
 
-/// Hanging cloth stepped at 60 Hz: 3 warm-up steps, then steps until both min_steps and
-/// min_seconds are reached (or max_seconds passed). Vertex-iterations = particles x substeps x
-/// iterations per substep (1 for MASS_SPRING).
-Timing time_cloth(Sim& s, double min_seconds, double max_seconds, uint32_t min_steps, int warmup = 3) {
+/// Hanging cloth stepped at 60 Hz: `warmup` frames, then frames until min_frames are done and
+/// min_seconds (or max_seconds) have passed. A frame is `frame_steps` library steps of
+/// 1/60 s / frame_steps (see frame_steps_for). A rolled-back step, or one whose automatic substeps
+/// hit DRAPE_MAX_SUBSTEPS (below the stability bound: it would blow up), makes the row not ok.
+/// Vertex-iterations = particles x substeps per frame x iterations per substep (1 for MASS_SPRING).
+Timing time_cloth(Sim& s, double min_seconds, double max_seconds, uint32_t min_frames, int warmup, uint32_t frame_steps = 1) {
     Timing r;
-    const float dt = 1.0f / 60.0f;
-    drape_status st;
-    for (int i = 0; i < warmup; ++i) timed_step(s, dt, &st);
+    const float dt = 1.0f / 60.0f / float(frame_steps);
+    auto frame = [&] {
+        double ms = 0;
+        for (uint32_t k = 0; k < frame_steps; ++k) {
+            drape_status st;
+            ms += timed_step(s, dt, &st);
+            if (st != DRAPE_OK || s.stats().substeps >= DRAPE_MAX_SUBSTEPS) r.ok = false;
+        }
+        return ms;
+    };
+    for (int i = 0; i < warmup; ++i) frame();
     std::vector<double> ms;
     double total = 0;
-    while ((ms.size() < min_steps || total < min_seconds * 1e3) && total < max_seconds * 1e3) {
-        ms.push_back(timed_step(s, dt, &st));
+    while (ms.size() < min_frames || (total < min_seconds * 1e3 && total < max_seconds * 1e3)) {
+        ms.push_back(frame());
         total += ms.back();
-        if (st != DRAPE_OK) r.ok = false;
     }
     drape_stats ss = s.stats();
     r.steps = uint32_t(ms.size());
     r.ms_median = median(ms);
     r.ms_min = *std::min_element(ms.begin(), ms.end());
-    r.substeps = ss.substeps;
+    r.substeps = ss.substeps * frame_steps;
     r.iterations = ss.iterations;
-    r.vit_per_s = double(s.vertices) * ss.substeps * ss.iterations / (r.ms_median * 1e-3);
+    r.vit_per_s = double(s.vertices) * r.substeps * ss.iterations / (r.ms_median * 1e-3);
     r.max_strain = ss.max_strain;
     r.rms_strain = ss.rms_strain;
     return r;
+}
+
+/// Library steps per 60 Hz frame: 1, or more where MASS_SPRING's stability bound needs more
+/// substeps than one step may take (DRAPE_MAX_SUBSTEPS; drape_estimate_stability tells). The
+/// hanging cloth needs ~1170 substeps per frame at 128^2 and ~4200 at 256^2 (the dashpot term of
+/// the bound dominates there): one step capped at 1000 is unstable and rolled back, so those frames
+/// are 3 and 11 library steps.
+uint32_t frame_steps_for(const GridSpec& gs, const drape_params& p) {
+    drape_cloth_desc cd;
+    drape_grid_desc g;
+    describe(gs, &cd, &g);
+    drape_stability e{};
+    e.struct_size = sizeof e;
+    die_on(drape_estimate_stability(&cd, &g, nullptr, &p, 1.0f / 60.0f, &e), "drape_estimate_stability");
+    return std::max(1u, (e.stable_substeps + DRAPE_MAX_SUBSTEPS - 1) / DRAPE_MAX_SUBSTEPS);
 }
 
 std::vector<uint32_t> available_backends() {
@@ -378,8 +412,8 @@ std::vector<uint32_t> available_backends() {
 void run_throughput(const Options& o) {
     const std::vector<uint32_t> sizes = o.quick ? std::vector<uint32_t>{16, 32} : std::vector<uint32_t>{32, 64, 128, 256};
     const auto backends = available_backends();
-    Csv csv(o.out + "/throughput.csv",
-            "size,vertices,model,backend,threads,substeps,iterations,steps,ms_median,ms_min,vertex_iter_per_s,max_strain,rms_strain,ok");
+    Csv csv(o.out + "/throughput.csv", "size,vertices,model,backend,threads,substeps,iterations,frame_steps,steps,ms_median,ms_min,"
+                                       "vertex_iter_per_s,max_strain,rms_strain,ok");
     g_progress.start("throughput", int(sizes.size() * 3 * backends.size()));
     for (uint32_t n : sizes)
         for (uint32_t m : kModels)
@@ -389,16 +423,20 @@ void run_throughput(const Options& o) {
                 gs.backend = b;
                 gs.threads = o.threads;
                 auto sim = make_grid(gs);
-                sim->set_params(params_for(m));
-                // MASS_SPRING runs up to 1000 substeps per frame here: fewer steps (still a median).
+                const drape_params p = params_for(m);
+                sim->set_params(p);
+                const uint32_t frame_steps = frame_steps_for(gs, p);
+                // MASS_SPRING runs hundreds to thousands of substeps per frame here: fewer frames
+                // (a median of 3 in a full run; one at 256^2, where a frame takes a minute or
+                // more of a loaded core). From 128^2 no warm-up frame (the first step allocates
+                // nothing the later ones would not).
                 const bool slow = m == DRAPE_MODEL_MASS_SPRING;
-                // From 128^2 one MASS_SPRING step is seconds: no warm-up step there (the first
-                // step allocates nothing the later ones would not), still a median of 3.
-                Timing t = o.quick ? time_cloth(*sim, 0.1, 1.0, slow ? 1 : 5, slow ? 0 : 2)
-                                   : time_cloth(*sim, 0.6, 4.0, slow ? 3 : 9, slow ? (n >= 128 ? 0 : 1) : 3);
-                csv.row("%u,%u,%s,%s,%u,%u,%u,%u,%.4f,%.4f,%.4g,%.5g,%.5g,%d", n, sim->vertices, model_name(m),
-                        backend_name(b), b == DRAPE_BACKEND_CPU ? 1u : o.threads, t.substeps, t.iterations, t.steps,
-                        t.ms_median, t.ms_min, t.vit_per_s, t.max_strain, t.rms_strain, int(t.ok));
+                Timing t = o.quick ? time_cloth(*sim, 0.1, 1.0, slow ? 1 : 5, slow ? 0 : 2, frame_steps)
+                                   : time_cloth(*sim, 0.6, 4.0, slow ? (n >= 256 ? 1 : 3) : 9, slow ? (n >= 128 ? 0 : 1) : 3,
+                                                frame_steps);
+                csv.row("%u,%u,%s,%s,%u,%u,%u,%u,%u,%.4f,%.4f,%.4g,%.5g,%.5g,%d", n, sim->vertices, model_name(m),
+                        backend_name(b), b == DRAPE_BACKEND_CPU ? 1u : o.threads, t.substeps, t.iterations, frame_steps,
+                        t.steps, t.ms_median, t.ms_min, t.vit_per_s, t.max_strain, t.rms_strain, int(t.ok));
                 g_progress.tick(std::to_string(n) + "^2 " + model_name(m) + " " + backend_name(b) + " " +
                                 fmt("%.3g Mvit/s", t.vit_per_s * 1e-6));
             }
@@ -419,7 +457,7 @@ void run_threads(const Options& o) {
             gs.threads = k < 0 ? 1 : counts[k];
             auto sim = make_grid(gs);
             sim->set_params(params_for(DRAPE_MODEL_XPBD));
-            Timing t = o.quick ? time_cloth(*sim, 0.1, 1.0, 5, 2) : time_cloth(*sim, 0.6, 4.0, 9);
+            Timing t = o.quick ? time_cloth(*sim, 0.1, 1.0, 5, 2) : time_cloth(*sim, 0.6, 4.0, 9, 3);
             if (k < 0) base_ms = t.ms_median;
             csv.row("%u,%u,xpbd,%s,%u,%.4f,%.4g,%.3f", n, sim->vertices, backend_name(gs.backend), gs.threads,
                     t.ms_median, t.vit_per_s, base_ms / t.ms_median);
@@ -466,28 +504,71 @@ std::vector<Config> precision_configs(const Options& o, bool chain) {
 // 2b. Stretch-dominated rest states (accuracy.md R13): curtain pinned along its top row and a
 // horizontal sheet pinned along two opposite edges, run to rest (air drag 3 /s, which exerts no
 // force at rest), against the double-precision Newton equilibrium of the same springs. Error:
-// max vertex distance over the largest displacement from the rest pose, and the same for the
-// lowest point. Jolt 5.5 reference figures ("measured on a 2-vCPU x86-64 VM") go next to
-// these in the plot.
+// max vertex distance over the largest displacement from the rest pose, the same for the lowest
+// point, and the lowest point's error over the hanging length (the metric of the Jolt 5.5 figures
+// that plot.py sets beside the curtain's).
 double max_distance(const std::vector<float>& x, const std::vector<double>& xr);
 
+/// CPU time of the calling thread, ms: the rest scenes run on the CPU backend in a one-thread
+/// world, so this is the work of one core, whatever else loads the machine.
+double thread_cpu_ms() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+/// The settings of the rest scenes: the library's defaults as they are (model, budget, tethers),
+/// then without tethers XPBD at its automatic budget and finer, MASS_SPRING at its stability
+/// bound, IMPLICIT at its automatic budget and at 1 x 1 (substeps/iterations 0 = automatic: the
+/// budget comes from the library). Up to `rest_size` a setting runs to rest; larger curtains up to
+/// `max_size` only take part in the timing rounds (MASS_SPRING at 129^2: ~230 substeps, about 1 s
+/// per frame here, so 600 frames to rest would be 10 minutes of the run). `cheap`: also run on
+/// the 129^2 sheet.
+struct RestConfig {
+    Config c;
+    float max_stretch;
+    uint32_t max_size;
+    bool cheap;
+    uint32_t rest_size = 129;
+};
+std::vector<RestConfig> rest_configs(const Options& o) {
+    drape_params def{};
+    die_on(drape_params_default(&def), "drape_params_default");
+    std::vector<RestConfig> out = {{{def.model, def.substeps, def.iterations}, def.max_stretch, 129, true},
+                                   {{DRAPE_MODEL_XPBD, 0, 0}, 0, 129, true},
+                                   {{DRAPE_MODEL_IMPLICIT, 0, 0}, 0, 129, true},
+                                   {{DRAPE_MODEL_IMPLICIT, 1, 1}, 0, 129, true},
+                                   {{DRAPE_MODEL_MASS_SPRING, 0, 0}, 0, 129, false, 65},
+                                   {{DRAPE_MODEL_XPBD, 64, 1}, 0, 129, false}};
+    if (!o.quick) out.push_back({{DRAPE_MODEL_XPBD, 32, 1}, 0, 65, false});
+    return out;
+}
+std::vector<uint32_t> rest_sizes(const Options& o, bool curtain) {
+    if (o.quick) return curtain ? std::vector<uint32_t>{17, 33} : std::vector<uint32_t>{17};
+    return {17, 33, 65, 129};
+}
+int rest_runs(const Options& o) {
+    int n = 0;
+    for (bool curtain : {true, false})
+        for (uint32_t size : rest_sizes(o, curtain))
+            for (const RestConfig& rc : rest_configs(o)) n += size <= rc.max_size && (curtain || size < 129 || rc.cheap);
+    return n;
+}
+
 void run_rest(const Options& o) {
-    Csv csv(o.out + "/rest.csv", "scene,size,model,substeps,iterations,ms_median,vertex_error,lowest_error,length_error,"
-                                 "max_strain,ref_max_strain,ok");
-    // 129^2 only for the cheap settings (MASS_SPRING needs ~0.5 s per step there).
-    const std::vector<uint32_t> sizes = o.quick ? std::vector<uint32_t>{17} : std::vector<uint32_t>{17, 33, 65, 129};
-    std::vector<Config> configs = {{DRAPE_MODEL_IMPLICIT, 0, 0}, {DRAPE_MODEL_IMPLICIT, 1, 1}, {DRAPE_MODEL_XPBD, 0, 0},
-                                   {DRAPE_MODEL_MASS_SPRING, 0, 1}};
-    if (!o.quick) configs.push_back({DRAPE_MODEL_XPBD, 64, 1});
-    g_progress.start("rest", int(sizes.size() * 2 * configs.size()));
+    Csv csv(o.out + "/rest.csv", "scene,size,model,setting,substeps,iterations,max_stretch,is_default,cpu_ms_median,wall_ms_median,rounds,"
+                                 "vertex_error,lowest_error,length_error,max_strain,ref_max_strain,ok");
+    const int steps = o.quick ? 180 : 600, rounds = o.quick ? 3 : 5;
+    g_progress.start("rest", rest_runs(o));
     for (const char* scene : {"curtain", "sheet"}) {
         const bool curtain = scene[0] == 'c';
-        for (uint32_t n : sizes) {
+        for (uint32_t n : rest_sizes(o, curtain)) {
             GridSpec gs;
             gs.cols = gs.rows = n;
             gs.mass = curtain ? 1.0 : 0.5;
             gs.vertical = curtain;
             gs.pins = Pins::None;
+            gs.threads = 1;
             // Reference: same springs, masses, pins.
             const drape_params base = params_for(DRAPE_MODEL_IMPLICIT);
             const double k[3] = {base.stiffness[0], base.stiffness[1], base.stiffness[2]};
@@ -518,35 +599,63 @@ void run_rest(const Options& o) {
                 std::ofstream f(o.out + "/reference.csv", std::ios::app);
                 f << scene << "_rest," << n << "," << residual << "," << ref_strain << ",newton_static\n";
             }
-            for (const Config& c : configs) {
-                if (n > 65 && !(c.model == DRAPE_MODEL_IMPLICIT && c.substeps == 1) && !(c.model == DRAPE_MODEL_XPBD && c.substeps == 0)) {
-                    g_progress.tick("skip");
-                    continue;
-                }
-                drape_params p = params_for(c.model);
-                p.substeps = c.substeps;
-                p.iterations = c.iterations;
-                p.air_drag = 3;
-                p.max_stretch = 0;
-                auto sim = make_grid(gs);
-                sim->set_inverse_masses(w);
-                sim->set_params(p);
-                std::vector<double> ms;
+            // Every setting of this scene and size runs to rest, then they are timed in
+            // interleaved rounds, so a burst of load from other processes falls on all of them.
+            struct Run {
+                RestConfig rc;
+                bool is_default, at_rest;
+                std::unique_ptr<Sim> sim;
                 bool ok = true;
-                drape_status st;
-                const int steps = o.quick ? 180 : 600;
-                for (int step = 0; step < steps; ++step) {
-                    ms.push_back(timed_step(*sim, 1.0f / 60, &st));
-                    if (st != DRAPE_OK) ok = false;
+                int reps = 1;  ///< steps per round: about 50 ms of work, at least one
+                std::vector<double> cpu_ms, wall_ms;
+            };
+            std::vector<Run> runs;
+            const std::vector<RestConfig> configs = rest_configs(o);
+            for (const RestConfig& rc : configs) {
+                if (n > rc.max_size || (!curtain && n >= 129 && !rc.cheap)) continue;
+                Run r;
+                r.rc = rc;
+                r.is_default = &rc == &configs[0];
+                drape_params p = params_for(rc.c.model);
+                p.substeps = rc.c.substeps;
+                p.iterations = rc.c.iterations;
+                p.air_drag = 3;
+                p.max_stretch = rc.max_stretch;
+                r.sim = make_grid(gs);
+                r.sim->set_inverse_masses(w);
+                r.sim->set_params(p);
+                r.at_rest = n <= rc.rest_size;
+                const int to_rest = r.at_rest ? steps : 1;
+                const double t0 = thread_cpu_ms();
+                for (int step = 0; step < to_rest; ++step)
+                    if (drape_cloth_step(r.sim->cloth, 1.0f / 60) != DRAPE_OK) r.ok = false;
+                r.reps = std::max(1, std::min(50, int(50.0 / ((thread_cpu_ms() - t0) / to_rest))));
+                g_progress.tick(std::string(scene) + " " + std::to_string(n) + "^2 " + model_name(rc.c.model) +
+                                (r.at_rest ? " to rest" : " (timing only)"));
+                runs.push_back(std::move(r));
+            }
+            for (int round = 0; round < rounds; ++round)
+                for (Run& r : runs) {
+                    const double c0 = thread_cpu_ms();
+                    const auto w0 = Clock::now();
+                    for (int k = 0; k < r.reps; ++k)
+                        if (drape_cloth_step(r.sim->cloth, 1.0f / 60) != DRAPE_OK) r.ok = false;
+                    r.cpu_ms.push_back((thread_cpu_ms() - c0) / r.reps);
+                    r.wall_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - w0).count() / r.reps);
                 }
-                const std::vector<float> xs = sim->positions();
-                const double e_vertex = max_distance(xs, x) / largest;
-                const double e_low = std::fabs(xs[3 * low_v + 1] - low_ref) / std::fabs(low_ref - low_rest);
-                const double e_length = std::fabs(xs[3 * low_v + 1] - low_ref) / std::fabs(low_ref);  // hanging length
-                const drape_stats ss = sim->stats();
-                csv.row("%s,%u,%s,%u,%u,%.4f,%.5g,%.5g,%.5g,%.5g,%.5g,%d", scene, n, model_name(c.model), ss.substeps,
-                        ss.iterations, median(ms), e_vertex, e_low, e_length, ss.max_strain, ref_strain, int(ok));
-                g_progress.tick(std::string(scene) + " " + std::to_string(n) + "^2 " + model_name(c.model));
+            for (const Run& r : runs) {
+                const std::vector<float> xs = r.sim->positions();
+                const double e_vertex = r.at_rest ? max_distance(xs, x) / largest : NAN;
+                const double e_low = r.at_rest ? std::fabs(xs[3 * low_v + 1] - low_ref) / std::fabs(low_ref - low_rest) : NAN;
+                const double e_length = r.at_rest ? std::fabs(xs[3 * low_v + 1] - low_ref) / std::fabs(low_ref) : NAN;
+                const drape_stats ss = r.sim->stats();
+                const Config& c = r.rc.c;
+                const std::string setting = c.substeps == 0 && c.iterations == 0 ? "auto"
+                                            : c.model == DRAPE_MODEL_MASS_SPRING ? std::to_string(c.substeps)
+                                            : std::to_string(c.substeps) + "x" + std::to_string(c.iterations);
+                csv.row("%s,%u,%s,%s,%u,%u,%g,%d,%.4f,%.4f,%d,%.5g,%.5g,%.5g,%.5g,%.5g,%d", scene, n, model_name(c.model),
+                        setting.c_str(), ss.substeps, ss.iterations, double(r.rc.max_stretch), int(r.is_default), median(r.cpu_ms), median(r.wall_ms), rounds, e_vertex, e_low, e_length,
+                        ss.max_strain, ref_strain, int(r.ok));
             }
         }
     }
@@ -769,6 +878,7 @@ std::vector<Config> sphere_configs(const Options& o) {
             for (uint32_t i : {1u, 4u, 16u})
                 if (s * i <= (o.quick ? 16u : 256u) && (!o.quick || s * i >= 4)) out.push_back({m, s, i});
     for (uint32_t s : o.quick ? std::vector<uint32_t>{0} : std::vector<uint32_t>{0, 500}) out.push_back({DRAPE_MODEL_MASS_SPRING, s, 1});
+    out.push_back({DRAPE_MODEL_IMPLICIT, 0, 0});  // its automatic budget
     return out;
 }
 // The benchmarks' sphere collider (id 1, 5 mm margin) at (x, y, z) with radius r.
@@ -862,7 +972,6 @@ void run_precision(const Options& o) {
     run_precision_tethers(o, csv);
     run_precision_sphere(o, csv);
     g_progress.finish();
-    run_rest(o);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1320,7 +1429,7 @@ void write_meta(const Options& o, double seconds) {
     f << "stress_grid," << (o.quick ? 8 : 16) << "\n";
     f << "vibration_grid," << (o.quick ? 8 : 16) << "\n";
     f << "cloth_mass," << GridSpec{}.mass << "\n";
-    // The library's defaults as one step of a small XPBD cloth reports them.
+    // The library's defaults (model, budget) as one step of a small cloth reports them.
     drape_params def{};
     die_on(drape_params_default(&def), "drape_params_default");
     GridSpec gs;
@@ -1328,6 +1437,7 @@ void write_meta(const Options& o, double seconds) {
     auto sim = make_grid(gs);
     sim->set_params(def);
     die_on(drape_cloth_step(sim->cloth, 1.0f / 60), "drape_cloth_step");
+    f << "default_model," << model_name(def.model) << "\n";
     f << "default_substeps," << sim->stats().substeps << "\n";
     f << "default_iterations," << sim->stats().iterations << "\n";
     f << "default_max_stretch," << def.max_stretch << "\n";
@@ -1353,7 +1463,7 @@ int main(int argc, char** argv) {
         } else {
             std::fprintf(stderr,
                          "usage: drape_bench [--quick] [--out DIR] [--threads N] [--only "
-                         "throughput,threads,precision,stress,vibration]\n");
+                         "throughput,threads,precision,rest,stress,vibration]\n");
             return a == "--help" || a == "-h" ? 0 : 2;
         }
     }
@@ -1362,6 +1472,7 @@ int main(int argc, char** argv) {
     if (o.wants("throughput")) run_throughput(o);
     if (o.wants("threads")) run_threads(o);
     if (o.wants("precision")) run_precision(o);
+    if (o.wants("rest")) run_rest(o);
     if (o.wants("stress")) run_stress(o);
     if (o.wants("vibration")) run_vibration(o);
     const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
