@@ -3,6 +3,8 @@
 set -euo pipefail
 bash .ci/build.sh release
 ctest --preset release
+# The GLES tests again on Mesa's softpipe driver (llvmpipe above).
+ctest --preset softpipe
 
 # C#: package checks, Unity compile checks, NUnit tests of Drape.Core.
 bash .ci/dotnet-test.sh

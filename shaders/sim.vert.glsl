@@ -204,6 +204,63 @@ float jacobi_scale(float wi, float wj, uint ci, uint cj, float diag, float gamma
     float off = gamma_factor * (wi * float(ci - 1u) + wj * float(cj - 1u));
     return 1.0 / (1.0 + u_jacobi_coupling * off / diag);
 }
+
+// The particle a constraint pass solves for: displacement iterate d, substep start s, inverse
+// mass w, active springs c, first neighbour-table slot and used slots (0 when kinematic).
+struct Own {
+    vec3 d;
+    vec3 s;
+    float w;
+    uint c;
+    int row;
+    int count;
+};
+
+// One slot of kernels::constraint_iteration: adds the slot's correction to dx and returns its
+// lambda after the update (XPBD; PBD passes and ignores 0). Slots past the particle's count and
+// inactive groups change nothing.
+float solve_slot(Own o, int s, float lambda, inout vec3 dx) {
+    if (s >= o.count) return lambda;
+    uvec4 nb = fetch_nbr(o.row + s);
+    uint g = nb.z;
+    if (!active_group(g)) return lambda;
+    int j = int(nb.x);
+    vec4 rj = fetch_x(j);
+    float wj = rj.w;
+    vec3 dij = o.d - rj.xyz;
+    float len;
+    vec3 n = direction((o.s - fetch_aux(j).xyz) + dij, len);
+    float constraint = len - uintBitsToFloat(nb.y);
+    float wsum = o.w + wj;
+    float dl;
+#ifdef DRAPE_XPBD
+    float alpha = u_compliance[g];
+    float gamma = u_damping_ratio[g];
+    float diag = (1.0 + gamma) * wsum + alpha;
+    dl = (-constraint - alpha * lambda - gamma * dot(n, dij)) / diag;
+    dl *= jacobi_scale(o.w, wj, o.c, fetch_info(j).y, diag, 1.0 + gamma);
+#else
+    dl = -constraint / wsum * u_stiffness[g];
+    dl *= jacobi_scale(o.w, wj, o.c, fetch_info(j).y, wsum, 1.0);
+#endif
+    dx += (o.w * dl) * n;
+    return lambda + dl;
+}
+
+#ifdef DRAPE_XPBD
+// Slots 4q .. 4q+3 in order, their lambdas in one vec4. Lambdas live in vec4 attributes and
+// varyings with constant component names, never in a local array indexed by the slot: softpipe
+// (and mobile compilers of the same kind) read such an array wrongly (XPBD drifted 1e-4 m from
+// the CPU in two steps of a 16x16 sheet), and vertex-stage local arrays are a weak spot of
+// mobile GLES compilers.
+vec4 solve_slots4(Own o, int q, vec4 lambda, inout vec3 dx) {
+    lambda.x = solve_slot(o, 4 * q, lambda.x, dx);
+    lambda.y = solve_slot(o, 4 * q + 1, lambda.y, dx);
+    lambda.z = solve_slot(o, 4 * q + 2, lambda.z, dx);
+    lambda.w = solve_slot(o, 4 * q + 3, lambda.w, dx);
+    return lambda;
+}
+#endif
 #endif
 
 #if DRAPE_SHAPES > 0
@@ -459,94 +516,65 @@ void main() {
 
 #elif defined(DRAPE_PASS_CONSTRAINT)
     // kernels::constraint_iteration<kXpbd, kCommit>
+    Own o = Own(xi, a_aux.xyz, wi, info.y, row, wi != 0.0 ? count : 0);
+    vec3 dx = vec3(0.0);
 #ifdef DRAPE_XPBD
-    float lambda[DRAPE_LAMBDA_VEC4 * 4];
 #if DRAPE_LAMBDA_VEC4 >= 1
-    for (int k = 0; k < 4; ++k) lambda[0 + k] = a_lambda0[k];
+    vec4 lambda0 = solve_slots4(o, 0, a_lambda0, dx);
 #endif
 #if DRAPE_LAMBDA_VEC4 >= 2
-    for (int k = 0; k < 4; ++k) lambda[4 + k] = a_lambda1[k];
+    vec4 lambda1 = solve_slots4(o, 1, a_lambda1, dx);
 #endif
 #if DRAPE_LAMBDA_VEC4 >= 3
-    for (int k = 0; k < 4; ++k) lambda[8 + k] = a_lambda2[k];
+    vec4 lambda2 = solve_slots4(o, 2, a_lambda2, dx);
 #endif
 #if DRAPE_LAMBDA_VEC4 >= 4
-    for (int k = 0; k < 4; ++k) lambda[12 + k] = a_lambda3[k];
+    vec4 lambda3 = solve_slots4(o, 3, a_lambda3, dx);
 #endif
 #if DRAPE_LAMBDA_VEC4 >= 5
-    for (int k = 0; k < 4; ++k) lambda[16 + k] = a_lambda4[k];
+    vec4 lambda4 = solve_slots4(o, 4, a_lambda4, dx);
 #endif
 #if DRAPE_LAMBDA_VEC4 >= 6
-    for (int k = 0; k < 4; ++k) lambda[20 + k] = a_lambda5[k];
+    vec4 lambda5 = solve_slots4(o, 5, a_lambda5, dx);
 #endif
 #if DRAPE_LAMBDA_VEC4 >= 7
-    for (int k = 0; k < 4; ++k) lambda[24 + k] = a_lambda6[k];
+    vec4 lambda6 = solve_slots4(o, 6, a_lambda6, dx);
 #endif
 #if DRAPE_LAMBDA_VEC4 >= 8
-    for (int k = 0; k < 4; ++k) lambda[28 + k] = a_lambda7[k];
+    vec4 lambda7 = solve_slots4(o, 7, a_lambda7, dx);
 #endif
-#endif
-    vec3 di = xi;        // displacement iterate
-    vec3 si = a_aux.xyz; // substep start
-    vec3 dx = vec3(0.0);
-    if (wi != 0.0) {
-        uint ci = info.y;
-        for (int s = 0; s < count; ++s) {
-            uvec4 nb = fetch_nbr(row + s);
-            uint g = nb.z;
-            if (!active_group(g)) continue;
-            int j = int(nb.x);
-            vec4 rj = fetch_x(j);
-            float wj = rj.w;
-            vec3 dij = di - rj.xyz;
-            float len;
-            vec3 n = direction((si - fetch_aux(j).xyz) + dij, len);
-            float constraint = len - uintBitsToFloat(nb.y);
-            float wsum = wi + wj;
-            float dl;
-#ifdef DRAPE_XPBD
-            float alpha = u_compliance[g];
-            float gamma = u_damping_ratio[g];
-            float diag = (1.0 + gamma) * wsum + alpha;
-            dl = (-constraint - alpha * lambda[s] - gamma * dot(n, dij)) / diag;
-            dl *= jacobi_scale(wi, wj, ci, fetch_info(j).y, diag, 1.0 + gamma);
-            lambda[s] += dl;
 #else
-            dl = -constraint / wsum * u_stiffness[g];
-            dl *= jacobi_scale(wi, wj, ci, fetch_info(j).y, wsum, 1.0);
+    for (int s = 0; s < o.count; ++s) solve_slot(o, s, 0.0, dx);
 #endif
-            dx += (wi * dl) * n;
-        }
-    }
-    vec3 dn = di + dx;
+    vec3 dn = o.d + dx;
     v_d = vec4(dn, wi);
 #ifdef DRAPE_COMMIT
-    v_x = vec4(si + dn, wi);
+    v_x = vec4(o.s + dn, wi);
 #endif
 #if defined(DRAPE_XPBD) && !defined(DRAPE_COMMIT)
 #if DRAPE_LAMBDA_VEC4 >= 1
-    v_lambda0 = vec4(lambda[0], lambda[1], lambda[2], lambda[3]);
+    v_lambda0 = lambda0;
 #endif
 #if DRAPE_LAMBDA_VEC4 >= 2
-    v_lambda1 = vec4(lambda[4], lambda[5], lambda[6], lambda[7]);
+    v_lambda1 = lambda1;
 #endif
 #if DRAPE_LAMBDA_VEC4 >= 3
-    v_lambda2 = vec4(lambda[8], lambda[9], lambda[10], lambda[11]);
+    v_lambda2 = lambda2;
 #endif
 #if DRAPE_LAMBDA_VEC4 >= 4
-    v_lambda3 = vec4(lambda[12], lambda[13], lambda[14], lambda[15]);
+    v_lambda3 = lambda3;
 #endif
 #if DRAPE_LAMBDA_VEC4 >= 5
-    v_lambda4 = vec4(lambda[16], lambda[17], lambda[18], lambda[19]);
+    v_lambda4 = lambda4;
 #endif
 #if DRAPE_LAMBDA_VEC4 >= 6
-    v_lambda5 = vec4(lambda[20], lambda[21], lambda[22], lambda[23]);
+    v_lambda5 = lambda5;
 #endif
 #if DRAPE_LAMBDA_VEC4 >= 7
-    v_lambda6 = vec4(lambda[24], lambda[25], lambda[26], lambda[27]);
+    v_lambda6 = lambda6;
 #endif
 #if DRAPE_LAMBDA_VEC4 >= 8
-    v_lambda7 = vec4(lambda[28], lambda[29], lambda[30], lambda[31]);
+    v_lambda7 = lambda7;
 #endif
 #endif
 #endif

@@ -1,5 +1,6 @@
 // Headless OpenGL ES for tests: Mesa's surfaceless EGL platform, an ES 3.0 context (strict with
-// MESA_GLES_VERSION_OVERRIDE=3.0, set here before EGL starts and by ctest), a 1x1 FBO bound.
+// MESA_GLES_VERSION_OVERRIDE=3.0, set here before EGL starts and by ctest), a 1x1 FBO bound;
+// on the driver GALLIUM_DRIVER names when it is set (the softpipe test preset).
 // Under CI=true a missing context is a failure; locally the GLES tests skip.
 #pragma once
 
@@ -38,6 +39,16 @@ public:
         const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 0, EGL_NONE};
         context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, context_attribs);
         if (context_ == EGL_NO_CONTEXT) return "eglCreateContext failed";
+        // A run asked for a driver (GALLIUM_DRIVER=softpipe) must get it, not Mesa's fallback.
+        const char* driver = std::getenv("GALLIUM_DRIVER");
+        if (driver && *driver) {
+            if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) return "eglMakeCurrent failed";
+            const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+            const std::string got = renderer ? renderer : "none";
+            release_current();
+            if (got.find(driver) == std::string::npos)
+                return std::string("GALLIUM_DRIVER=") + driver + " asked for, GL_RENDERER is " + got;
+        }
         return {};
     }
     /// Makes the context current on this thread with a 1x1 FBO bound (the default framebuffer
