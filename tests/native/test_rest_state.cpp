@@ -175,7 +175,8 @@ TEST(RestState, XpbdDefaultBudgetRestsVisiblySofter) {
     EXPECT_GT(e.lowest, 0.2);
 }
 
-// CPU_THREADED runs the same residual kernel split over the pool and the same serial solve.
+// CPU_THREADED splits the residual over the pool and runs the two halves of the nested-dissection
+// substitution on two threads, with the same order and arithmetic as CPU.
 TEST(RestState, ImplicitThreadedEqualsSingleThreadedBitForBit) {
     const RestScene s{Scene::Curtain, 65, 1};  // 4225 particles: the passes really split
     std::vector<float> x[2];

@@ -64,15 +64,11 @@ void CpuCloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& k
     Particle* disp = d_.data();
     Particle* target = target_.data();
     Particle* iterate = spare2_.data();
-    Particle* residual = spare_.data();
     for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_predict(c, cur, disp, target, iterate, b, e); });
     for (uint32_t k : kinematic_) target[k] = iterate[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
     if (!(std::fabs(implicit_.h() / c.h - 1.0f) < kImplicitRefactor)) factor_implicit(c.h);  // dt changed a lot
-    const uint32_t iterations = iterations_for();
-    for (uint32_t it = 0; it < iterations; ++it) {
-        for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_residual(c, iterate, target, cur, residual, b, e); });
-        implicit_.apply(residual, iterate);
-    }
+    implicit_.solve(c, cur, target, iterate, iterations_for(),
+                    backend_ == DRAPE_BACKEND_CPU_THREADED ? &world_.pool() : nullptr);
     // Commit: positions start + d into the old displacement buffer, d becomes the state.
     for_particles([&](uint32_t b, uint32_t e) {
         for (uint32_t i = b; i < e; ++i) disp[i] = Particle(glm::vec3(cur[i]) + glm::vec3(iterate[i]), cur[i].w);
@@ -82,7 +78,7 @@ void CpuCloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& k
 }
 
 void CpuCloth::factor_implicit(float h) {
-    implicit_.factor(topo_.nbr, params_, x_.data(), topo_.particle_count, h);
+    implicit_.factor(topo_, params_, x_.data(), h);
 }
 
 // Re-centred from particle 0 (Cloth::recentre_shift).

@@ -2,8 +2,36 @@
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <glm/common.hpp>
+#include <numeric>
 
 namespace drape {
+
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+/// Calls fn(j, k) for every spring of free particle i that A couples to another free particle j
+/// (k + kd/h its coefficient), and returns the sum of the coefficients of all its springs.
+template <class Fn>
+double for_each_coupling(const NeighbourTable& nb, const drape_params& params, const std::vector<int>& row,
+                         uint32_t i, double kd_h, Fn&& fn) {
+    double sum = 0;
+    for (uint32_t s = 0; s < nb.count[i]; ++s) {
+        const uint8_t g = nb.group[size_t(i) * nb.slots + s];
+        if (g >= DRAPE_GROUP_COUNT || !(params.stiffness[g] > 0)) continue;
+        const double k = params.stiffness[g] + kd_h;
+        sum += k;
+        const uint32_t j = nb.index[size_t(i) * nb.slots + s];
+        if (row[j] >= 0) fn(j, k);
+    }
+    return sum;
+}
+
+}  // namespace
 
 bool ImplicitSolve::inputs_changed(const drape_params& params, const Particle* x, uint32_t n) {
     const size_t size = 4 + size_t(n);
@@ -19,67 +47,208 @@ bool ImplicitSolve::inputs_changed(const drape_params& params, const Particle* x
     return changed;
 }
 
-void ImplicitSolve::factor(const NeighbourTable& nb, const drape_params& params, const Particle* x,
-                           uint32_t n, float h) {
-    // Rows of the free particles; kinematic ones enter only through the residual.
+void ImplicitSolve::factor(const Topology& topo, const drape_params& params, const Particle* x, float h) {
+    const uint32_t n = topo.particle_count;
+    const NeighbourTable& nb = topo.nbr;
+    const double kd_h = double(params.damping) / h;
+    // Free particles; kinematic ones enter only through the residual. row: factor row, -1 if kinematic.
     std::vector<int> row(n, -1);
-    free_.clear();
+    std::vector<uint32_t> free;
     for (uint32_t i = 0; i < n; ++i)
         if (x[i].w != 0.0f) {
-            row[i] = int(free_.size());
-            free_.push_back(i);
+            row[i] = 0;
+            free.push_back(i);
         }
-    const double kd_h = double(params.damping) / h;
+    // Dissection: halve the free particles along the widest axis of their rest positions (ties by
+    // index), then move every particle of the second half that has a spring into the first into the
+    // separator. part: 0, 1, or kParts for the separator.
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (uint32_t i : free) {
+        lo = glm::min(lo, topo.rest_position[i]);
+        hi = glm::max(hi, topo.rest_position[i]);
+    }
+    const glm::vec3 extent = hi - lo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    std::vector<uint32_t> by_axis = free;
+    std::stable_sort(by_axis.begin(), by_axis.end(), [&](uint32_t a, uint32_t b) {
+        return topo.rest_position[a][axis] < topo.rest_position[b][axis];
+    });
+    std::vector<uint8_t> part(n, 0);
+    for (size_t f = by_axis.size() / 2; f < by_axis.size(); ++f) part[by_axis[f]] = 1;
+    for (uint32_t i : free)
+        for_each_coupling(nb, params, row, i, kd_h, [&](uint32_t j, double) {
+            if (part[i] == 1 && part[j] == 0) part[i] = kParts;
+            if (part[i] == 0 && part[j] == 1) part[j] = kParts;
+        });
+    // Each part (and the separator) in its own AMD order, parts first: rows in particle_.
+    particle_.clear();
+    std::vector<int> local(n, -1);
+    for (int p = 0; p <= kParts; ++p) {
+        begin_[p] = uint32_t(particle_.size());
+        std::vector<uint32_t> members;
+        for (uint32_t i : free)
+            if (part[i] == p) {
+                local[i] = int(members.size());
+                members.push_back(i);
+            }
+        std::vector<Eigen::Triplet<double>> pattern;
+        for (uint32_t i : members) {
+            pattern.emplace_back(local[i], local[i], 1.0);
+            for_each_coupling(nb, params, row, i, kd_h, [&](uint32_t j, double) {
+                if (part[j] == p) pattern.emplace_back(local[i], local[j], 1.0);
+            });
+        }
+        SparseMatrix sub(int(members.size()), int(members.size()));
+        sub.setFromTriplets(pattern.begin(), pattern.end());
+        Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;
+        Eigen::AMDOrdering<int>()(sub, order);  // order.indices()[k]: the member placed k-th
+        for (int k = 0; k < int(members.size()); ++k) particle_.push_back(members[order.indices()[k]]);
+    }
+    begin_[kParts + 1] = uint32_t(particle_.size());
+    const int m = int(particle_.size());
+    for (int r = 0; r < m; ++r) row[particle_[r]] = r;
+
+    // A in that order, factored as it stands (no further ordering).
     std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(free_.size() * (nb.slots + 1));
-    for (uint32_t i : free_) {
-        double diag = 1.0 / (double(x[i].w) * h * h);
-        for (uint32_t s = 0; s < nb.count[i]; ++s) {
-            const uint8_t g = nb.group[size_t(i) * nb.slots + s];
-            if (g >= DRAPE_GROUP_COUNT || !(params.stiffness[g] > 0)) continue;
-            const double k = params.stiffness[g] + kd_h;
-            diag += k;
-            const int j = row[nb.index[size_t(i) * nb.slots + s]];
-            if (j >= 0) entries.emplace_back(row[i], j, -k);
-        }
+    entries.reserve(size_t(m) * (nb.slots + 1));
+    for (uint32_t i : free) {
+        const double diag = 1.0 / (double(x[i].w) * h * h) +
+                            for_each_coupling(nb, params, row, i, kd_h, [&](uint32_t j, double k) {
+                                entries.emplace_back(row[i], row[j], -k);
+                            });
         entries.emplace_back(row[i], row[i], diag);
     }
-    const int m = int(free_.size());
-    Eigen::SparseMatrix<double> a(m, m);
+    SparseMatrix a(m, m);
     a.setFromTriplets(entries.begin(), entries.end());
-    Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(a);  // AMD ordering
-    // L in float, compressed columns with the diagonal first (Eigen's order); rows of the solve are
-    // in the factor's permuted order: free particle f is row perm[f].
-    const Eigen::SparseMatrix<double>& l = llt.matrixL().nestedExpression();
-    col_.assign(l.outerIndexPtr(), l.outerIndexPtr() + m + 1);
-    row_.assign(l.innerIndexPtr(), l.innerIndexPtr() + l.nonZeros());
-    value_.assign(l.valuePtr(), l.valuePtr() + l.nonZeros());
-    perm_.resize(m);
-    for (int f = 0; f < m; ++f) perm_[f] = uint32_t(llt.permutationP().indices()[f]);
-    rhs_.resize(m);
+    Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>> llt(a);
+
+    // L in float, by columns (Eigen's storage, diagonal first) and by rows (sorted by column).
+    const SparseMatrix& l = llt.matrixL().nestedExpression();
+    inv_diag_.resize(m);
+    col_start_.assign(1, 0);
+    col_row_.clear();
+    col_value_.clear();
+    std::vector<uint32_t> row_count(m + 1, 0);
+    for (int j = 0; j < m; ++j) {
+        const int b = l.outerIndexPtr()[j], e = l.outerIndexPtr()[j + 1];
+        inv_diag_[j] = float(1.0 / l.valuePtr()[b]);
+        for (int k = b + 1; k < e; ++k) {
+            col_row_.push_back(uint32_t(l.innerIndexPtr()[k]));
+            col_value_.push_back(float(l.valuePtr()[k]));
+            ++row_count[l.innerIndexPtr()[k] + 1];
+        }
+        col_start_.push_back(uint32_t(col_row_.size()));
+    }
+    row_start_.resize(m + 1);
+    std::partial_sum(row_count.begin(), row_count.end(), row_start_.begin());
+    std::vector<uint32_t> fill(row_start_.begin(), row_start_.end() - 1);
+    row_col_.resize(col_row_.size());
+    row_value_.resize(col_row_.size());
+    for (int j = 0; j < m; ++j)
+        for (uint32_t k = col_start_[j]; k < col_start_[j + 1]; ++k) {
+            const uint32_t at = fill[col_row_[k]]++;
+            row_col_[at] = uint32_t(j);
+            row_value_[at] = col_value_[k];
+        }
+    // The dissection holds: a part's rows only reach its own columns.
+    for (int p = 0; p < kParts; ++p)
+        for (uint32_t r = begin_[p]; r < begin_[p + 1]; ++r)
+            assert(row_start_[r] == row_start_[r + 1] || row_col_[row_start_[r]] >= begin_[p]);
+    const uint32_t sep = begin_[kParts], sep_count = uint32_t(m) - sep;
+    sep_split_.resize(size_t(sep_count) * kParts);
+    for (uint32_t s = 0; s < sep_count; ++s)
+        for (int p = 0; p < kParts; ++p)
+            sep_split_[size_t(s) * kParts + p] =
+                uint32_t(std::lower_bound(row_col_.begin() + row_start_[sep + s],
+                                          row_col_.begin() + row_start_[sep + s + 1], begin_[p + 1]) -
+                         row_col_.begin());
+    y_.resize(m);
+    sep_sum_.resize(size_t(sep_count) * kParts);
+    for (std::vector<Particle>* v : {&r_, &z_}) v->assign(n, Particle(0.0f));
     h_ = h;
 }
 
-void ImplicitSolve::apply(const Particle* residual, Particle* iterate) {
-    const uint32_t m = uint32_t(free_.size());
-    for (uint32_t f = 0; f < m; ++f) rhs_[perm_[f]] = glm::vec3(residual[free_[f]]);
-    solve_in_place(rhs_.data());
-    for (uint32_t f = 0; f < m; ++f) iterate[free_[f]] += Particle(rhs_[perm_[f]], 0.0f);
+void ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* start, const Particle* target,
+                          Particle* iterate, uint32_t iterations, ThreadPool* pool) {
+    const uint32_t n = uint32_t(r_.size());
+    auto each = [&](auto&& fn) {
+        if (pool)
+            pool->parallel_for(n, fn);
+        else
+            fn(0u, n);
+    };
+    for (uint32_t it = 0; it < iterations; ++it) {
+        each([&](uint32_t b, uint32_t e) {
+            kernels::implicit_residual(c, iterate, target, start, r_.data(), b, e);
+        });
+        precondition(r_.data(), z_.data(), pool);
+        each([&](uint32_t b, uint32_t e) {
+            for (uint32_t i = b; i < e; ++i) iterate[i] += Particle(glm::vec3(z_[i]), 0.0f);
+        });
+    }
 }
 
-void ImplicitSolve::solve_in_place(glm::vec3* y) const {
-    // L L^T y' = y: forward by columns, then backward (three right-hand sides in one pass each).
-    const uint32_t m = uint32_t(perm_.size());
-    for (uint32_t j = 0; j < m; ++j) {
-        const glm::vec3 yj = y[j] / value_[col_[j]];
-        y[j] = yj;
-        for (uint32_t k = col_[j] + 1; k < col_[j + 1]; ++k) y[row_[k]] -= value_[k] * yj;
+void ImplicitSolve::precondition(const Particle* r, Particle* z, ThreadPool* pool) {
+    // Parts on their own threads (part p on thread p mod size), or one after the other: the same
+    // arithmetic either way.
+    const bool threaded = pool && pool->size() > 1 && particle_.size() >= ThreadPool::kMinParallelCount;
+    auto each_part = [&](auto&& fn) {
+        if (!threaded) {
+            for (int p = 0; p < kParts; ++p) fn(p);
+            return;
+        }
+        const uint32_t threads = pool->size();
+        pool->run_on_all([&](uint32_t t) {
+            for (int p = 0; p < kParts; ++p)
+                if (uint32_t(p) % threads == t) fn(p);
+        });
+    };
+    each_part([&](int p) { forward_part(p, r); });
+    separator(r, z);
+    each_part([&](int p) { backward_part(p, z); });
+}
+
+void ImplicitSolve::forward_part(int p, const Particle* r) {
+    // L y = r over the part's rows, then the part's share of each separator row's sum.
+    for (uint32_t row = begin_[p]; row < begin_[p + 1]; ++row) {
+        glm::vec3 v(r[particle_[row]]);
+        for (uint32_t k = row_start_[row]; k < row_start_[row + 1]; ++k) v -= row_value_[k] * y_[row_col_[k]];
+        y_[row] = v * inv_diag_[row];
     }
-    for (uint32_t j = m; j-- > 0;) {
-        glm::vec3 yj = y[j];
-        for (uint32_t k = col_[j] + 1; k < col_[j + 1]; ++k) yj -= value_[k] * y[row_[k]];
-        y[j] = yj / value_[col_[j]];
+    const uint32_t sep = begin_[kParts], sep_count = begin_[kParts + 1] - sep;
+    for (uint32_t s = 0; s < sep_count; ++s) {
+        const uint32_t b = p == 0 ? row_start_[sep + s] : sep_split_[size_t(s) * kParts + p - 1];
+        const uint32_t e = sep_split_[size_t(s) * kParts + p];
+        glm::vec3 sum(0.0f);
+        for (uint32_t k = b; k < e; ++k) sum += row_value_[k] * y_[row_col_[k]];
+        sep_sum_[size_t(s) * kParts + p] = sum;
     }
+}
+
+void ImplicitSolve::separator(const Particle* r, Particle* z) {
+    // Forward over the separator rows (the parts' shares summed in part order), then backward.
+    const uint32_t sep = begin_[kParts], m = begin_[kParts + 1];
+    for (uint32_t row = sep; row < m; ++row) {
+        const size_t s = size_t(row - sep) * kParts;
+        glm::vec3 v(r[particle_[row]]);
+        for (int p = 0; p < kParts; ++p) v -= sep_sum_[s + p];
+        for (uint32_t k = sep_split_[s + kParts - 1]; k < row_start_[row + 1]; ++k)
+            v -= row_value_[k] * y_[row_col_[k]];
+        y_[row] = v * inv_diag_[row];
+    }
+    for (uint32_t row = m; row-- > sep;) back_substitute(row, z);
+}
+
+void ImplicitSolve::backward_part(int p, Particle* z) {
+    // L^T y' = y over the part's rows; they read only their own part and the separator.
+    for (uint32_t row = begin_[p + 1]; row-- > begin_[p];) back_substitute(row, z);
+}
+
+void ImplicitSolve::back_substitute(uint32_t row, Particle* z) {
+    glm::vec3 v = y_[row];
+    for (uint32_t k = col_start_[row]; k < col_start_[row + 1]; ++k) v -= col_value_[k] * y_[col_row_[k]];
+    y_[row] = v * inv_diag_[row];
+    z[particle_[row]] = Particle(y_[row], 0.0f);
 }
 
 }  // namespace drape

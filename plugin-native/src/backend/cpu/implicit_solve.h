@@ -1,6 +1,13 @@
-// The IMPLICIT model's linear solve: A = M/h^2 + sum_springs (k + kd/h) (e_i - e_j)(e_i - e_j)^T
-// over the free particles (kinematic ones enter only through the residual), factored once by a
-// sparse Cholesky and applied to the residual of each iteration (CpuCloth::implicit_substep).
+// The IMPLICIT model's solve of one substep (CpuCloth::implicit_substep): iterations d += A^-1 r on
+// the force residual r (kernels::implicit_residual), with A = M/h^2 + sum_springs (k + kd/h)
+// (e_i - e_j)(e_i - e_j)^T over the free particles (kinematic ones enter only through the
+// residual), factored once by a sparse Cholesky.
+//
+// The factor's rows are ordered by a one-level nested dissection: two parts that share no spring,
+// each in its own minimum-degree (AMD) order, then the separator between them. L is then block
+// lower triangular, so each part's forward and back substitution runs on its own thread and only
+// the separator's rows are serial; the order and the arithmetic do not depend on the thread
+// count, so CPU_THREADED gives the same bits as CPU.
 #pragma once
 
 #include <cstdint>
@@ -8,6 +15,7 @@
 #include <vector>
 
 #include "backend/cpu/kernels.h"
+#include "backend/cpu/thread_pool.h"
 #include "core/topology.h"
 #include "drape/drape.h"
 
@@ -24,23 +32,41 @@ class ImplicitSolve {
     void clear() { key_.clear(); }
 
     /// Builds and factors A for substep h; particles with x[i].w == 0 are kinematic. Allocates.
-    void factor(const NeighbourTable& nb, const drape_params& params, const Particle* x, uint32_t n, float h);
+    void factor(const Topology& topo, const drape_params& params, const Particle* x, float h);
     /// Substep the factor was built for, s (0: none yet).
     float h() const { return h_; }
 
-    /// iterate[i] += (A^-1 r)_i for every free particle i, r = residual. Does not allocate.
-    void apply(const Particle* residual, Particle* iterate);
+    /// `iterations` times: r = kernels::implicit_residual(c, d, target, start), d += A^-1 r, with
+    /// d = iterate. pool: the threads to use, or null for the calling thread alone (same bits).
+    /// Does not allocate.
+    void solve(const kernels::SubstepContext& c, const Particle* start, const Particle* target,
+               Particle* iterate, uint32_t iterations, ThreadPool* pool);
 
   private:
-    void solve_in_place(glm::vec3* y) const;
+    static constexpr int kParts = 2;  ///< parts of the nested dissection; the separator follows
+    /// z = A^-1 r on the free particles (z stays 0 on kinematic ones).
+    void precondition(const Particle* r, Particle* z, ThreadPool* pool);
+    void forward_part(int p, const Particle* r);
+    void backward_part(int p, Particle* z);
+    void separator(const Particle* r, Particle* z);
+    void back_substitute(uint32_t row, Particle* z);
 
     float h_ = 0;
     std::vector<float> key_;           ///< stiffness, damping and inverse masses it was built from
-    std::vector<uint32_t> free_;       ///< particle of each free row, in particle order
-    std::vector<uint32_t> perm_;       ///< factor row of free particle f
-    std::vector<uint32_t> col_, row_;  ///< Cholesky factor L, compressed columns, diagonal first
-    std::vector<float> value_;
-    std::vector<glm::vec3> rhs_;  ///< scratch, one per free row
+    uint32_t begin_[kParts + 2] = {};  ///< factor rows of part p: [begin_[p], begin_[p + 1]); separator last
+    std::vector<uint32_t> particle_;   ///< particle of each factor row
+    std::vector<float> inv_diag_;      ///< 1 / L_jj
+    // Strictly lower part of L twice: by rows for the forward substitution, by columns for the
+    // back substitution (both are then gathers: a row only writes itself, so parts can run at once).
+    std::vector<uint32_t> row_start_, row_col_;
+    std::vector<float> row_value_;
+    std::vector<uint32_t> col_start_, col_row_;
+    std::vector<float> col_value_;
+    /// Per separator row, where its entries in each part's columns end (they are sorted by column).
+    std::vector<uint32_t> sep_split_;
+    std::vector<glm::vec3> y_;        ///< scratch, one per factor row
+    std::vector<glm::vec3> sep_sum_;  ///< per part and separator row: sum of L_sk y_k over the part's k
+    std::vector<Particle> r_, z_;     ///< residual and A^-1 times it, one per particle
 };
 
 }  // namespace drape
