@@ -3,7 +3,7 @@
 // files into --out; tests/bench/plot.py turns them into PNGs and REPORT.md.
 //
 //   drape_bench [--quick] [--out DIR] [--only a,b,...] [--threads N]
-//   parts: throughput, threads, precision, rest, stress, vibration
+//   parts: throughput, threads, precision, rest, stress, vibration, stages
 //
 // Timings are wall-clock medians over repeated steps of one run on a shared machine; they are
 // numbers to compare within one run, never assertions.
@@ -183,6 +183,7 @@ struct GridSpec {
     Pins pins = Pins::TwoTopCorners;
     uint32_t backend = DRAPE_BACKEND_CPU;
     uint32_t threads = 2;
+    bool profile_stages = false;  ///< drape_world_desc.profile_stages: drape_stats.stage_ms filled
 };
 
 /// The library's description of the grid `s`.
@@ -209,6 +210,7 @@ std::unique_ptr<Sim> make_grid(const GridSpec& s) {
     drape_world_desc wd{};
     wd.struct_size = sizeof wd;
     wd.thread_count = s.threads;
+    wd.profile_stages = s.profile_stages ? 1 : 0;
     die_on(drape_world_create(&wd, &sim->world), "drape_world_create");
     drape_cloth_desc cd;
     drape_grid_desc g;
@@ -1403,6 +1405,64 @@ void run_vibration(const Options& o) {
     g_progress.finish();
 }
 
+// ---------------------------------------------------------------------------------------------
+// 5. Where a CPU step's time goes: median wall time per stage (drape_stage), one thread
+
+void run_stages(const Options& o) {
+    static const char* const kStageNames[DRAPE_STAGE_COUNT] = {"begin",        "predict", "solve",  "tether",
+                                                               "self_collide", "collide", "verify", "finish"};
+    std::string header = "size,vertices,model,substeps,iterations,steps,step_ms_median";
+    for (const char* s : kStageNames) header += std::string(",") + s + "_ms_median";
+    Csv csv(o.out + "/stages.csv", header.c_str());
+    const std::vector<uint32_t> sizes = o.quick ? std::vector<uint32_t>{16} : std::vector<uint32_t>{33, 65};
+    const uint32_t models[] = {DRAPE_MODEL_MASS_SPRING, DRAPE_MODEL_PBD, DRAPE_MODEL_XPBD, DRAPE_MODEL_IMPLICIT};
+    g_progress.start("stages", int(sizes.size() * 4));
+    for (uint32_t n : sizes)
+        for (uint32_t m : models) {
+            // The throughput curtain (two top corners pinned) with every optional stage at work:
+            // tethers, a sphere it drapes over, self-collision.
+            GridSpec gs;
+            gs.cols = gs.rows = n;
+            gs.threads = 1;
+            gs.profile_stages = true;
+            auto sim = make_grid(gs);
+            drape_params p = params_for(m);
+            p.max_stretch = 0.1f;
+            sim->set_params(p);
+            drape_collider sphere{};
+            sphere.struct_size = sizeof sphere;
+            sphere.shape = DRAPE_COLLIDER_SPHERE;
+            sphere.position[0] = 0.5f;
+            sphere.position[1] = -0.6f;
+            sphere.position[2] = 0.15f;
+            sphere.rotation[3] = 1.0f;
+            sphere.size[0] = 0.2f;
+            die_on(drape_cloth_set_colliders(sim->cloth, &sphere, 1), "drape_cloth_set_colliders");
+            drape_self_collision_desc sc{};
+            sc.struct_size = sizeof sc;
+            sc.enabled = 1;
+            sc.thickness = 0.5f / float(n - 1);
+            die_on(drape_cloth_set_self_collision(sim->cloth, &sc), "drape_cloth_set_self_collision");
+            const int warm = o.quick ? 5 : 30, steps = o.quick ? 10 : 60;
+            std::vector<double> step_ms, stage_ms[DRAPE_STAGE_COUNT];
+            drape_stats s{};
+            for (int f = 0; f < warm + steps; ++f) {
+                if (drape_cloth_step(sim->cloth, 1.0f / 60) != DRAPE_OK) continue;  // rolled back: not timed
+                s = sim->stats();
+                if (f < warm) continue;
+                step_ms.push_back(s.step_ms);
+                for (int k = 0; k < DRAPE_STAGE_COUNT; ++k) stage_ms[k].push_back(s.stage_ms[k]);
+            }
+            std::string row = fmt("%.0f", n) + "," + std::to_string(sim->vertices) + "," + model_name(m) + "," +
+                              std::to_string(s.substeps) + "," + std::to_string(s.iterations) + "," +
+                              std::to_string(step_ms.size()) + "," + fmt("%.4f", median(step_ms));
+            for (const auto& v : stage_ms) row += "," + fmt("%.4f", median(v));
+            csv.row("%s", row.c_str());
+            g_progress.tick(std::to_string(n) + "^2 " + model_name(m) + fmt(" %.3g ms", median(step_ms)));
+        }
+    g_progress.finish();
+}
+
 void write_meta(const Options& o, double seconds) {
     std::ofstream f(o.out + "/meta.csv");
     f << "key,value\n";
@@ -1463,7 +1523,7 @@ int main(int argc, char** argv) {
         } else {
             std::fprintf(stderr,
                          "usage: drape_bench [--quick] [--out DIR] [--threads N] [--only "
-                         "throughput,threads,precision,rest,stress,vibration]\n");
+                         "throughput,threads,precision,rest,stress,vibration,stages]\n");
             return a == "--help" || a == "-h" ? 0 : 2;
         }
     }
@@ -1475,6 +1535,7 @@ int main(int argc, char** argv) {
     if (o.wants("rest")) run_rest(o);
     if (o.wants("stress")) run_stress(o);
     if (o.wants("vibration")) run_vibration(o);
+    if (o.wants("stages")) run_stages(o);
     const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
     write_meta(o, secs);
     std::fprintf(stderr, "drape_bench: %s mode done in %.1f s; CSV in %s\n", o.quick ? "quick" : "full", secs, o.out.c_str());

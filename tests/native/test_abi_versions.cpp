@@ -40,7 +40,7 @@ struct Abi1Buffer {
 
 TEST(AbiVersions, CurrentStructsStillHaveTheAbi1Layout) {
     if (sizeof(void*) != 8) GTEST_SKIP() << "ABI 1 sizes are recorded for 64-bit targets";
-    EXPECT_EQ(sizeof(drape_world_desc), kAbi1WorldDesc);
+    EXPECT_EQ(offsetof(drape_world_desc, profile_stages), kAbi1WorldDesc);  // revision 1 added `profile_stages`
     EXPECT_EQ(sizeof(drape_cloth_desc), kAbi1ClothDesc);
     EXPECT_EQ(sizeof(drape_grid_desc), kAbi1GridDesc);
     EXPECT_EQ(sizeof(drape_mesh_desc), kAbi1MeshDesc);
@@ -49,7 +49,7 @@ TEST(AbiVersions, CurrentStructsStillHaveTheAbi1Layout) {
     EXPECT_EQ(sizeof(drape_pin), kAbi1Pin);
     EXPECT_EQ(sizeof(drape_cloth_info), kAbi1ClothInfo);
     EXPECT_EQ(offsetof(drape_stats, sleeping), kAbi1StatsOld);
-    EXPECT_EQ(sizeof(drape_stats), kAbi1Stats);
+    EXPECT_EQ(offsetof(drape_stats, stage_ms), kAbi1Stats);  // revision 2 added `stage_ms`
     EXPECT_EQ(sizeof(drape_collider), kAbi1Collider);
     EXPECT_EQ(sizeof(drape_sleep_desc), kAbi1SleepDesc);
     EXPECT_EQ(sizeof(drape_view), kAbi1View);

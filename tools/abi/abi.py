@@ -79,12 +79,27 @@ ENUMS = [
         ("DRAPE_COLLIDER_PLANE", 3, "infinite; local +y (rotation applied to (0,1,0)) points to the free side, "
                                     "position is a point on it; size ignored"),
     ]),
+    enum("drape_stage", "Stage", "Stages of a CPU step, in order (drape_stats.stage_ms).", cs_prefix="DRAPE_STAGE_",
+         values=[
+             ("DRAPE_STAGE_BEGIN", 0, "plan substeps, back up the state, the step's spring factors"),
+             ("DRAPE_STAGE_PREDICT", 1, "inertial prediction (PBD, XPBD)"),
+             ("DRAPE_STAGE_SOLVE", 2, "the model's solve (MASS_SPRING: its Verlet step; IMPLICIT: with its "
+                                      "prediction)"),
+             ("DRAPE_STAGE_TETHER", 3, "tethers (max_stretch > 0 and pinned vertices)"),
+             ("DRAPE_STAGE_SELF_COLLIDE", 4, "self-collision (when enabled)"),
+             ("DRAPE_STAGE_COLLIDE", 5, "touch drag and colliders (when there are any)"),
+             ("DRAPE_STAGE_VERIFY", 6, "finite positions, runaway strain, strain statistics"),
+             ("DRAPE_STAGE_FINISH", 7, "rollback or commit: colliders advance, sleep check, recentre"),
+             ("DRAPE_STAGE_COUNT", 8, ""),
+         ]),
 ]
 
 STRUCTS = [
     struct("drape_world_desc", "WorldDesc", "", validate=True, fields=[
         field("thread_count", "u32", "workers for CPU_THREADED including the caller; 0 = hardware count",
               range=(0, 256), default=0),
+        field("profile_stages", "u32", "1: CPU steps time each stage into drape_stats.stage_ms (a clock read at "
+              "each stage's start and end); 0: no timing", range=(0, 1), default=0, rev=1),
     ]),
     struct("drape_cloth_desc", "ClothDesc", "Common to grid and mesh creation.", validate=True, fields=[
         field("backend", "u32", "drape_backend", enum="drape_backend", default="DRAPE_BACKEND_CPU"),
@@ -171,6 +186,9 @@ STRUCTS = [
         field("non_finite", "u32", "1 if the last step produced NaN/Inf (and was rolled back)"),
         field("unstable_steps", "u32", "steps rolled back since creation"),
         field("sleeping", "u32", "1 if the cloth is asleep (drape_sleep_desc): steps do no work", rev=1),
+        field("stage_ms", "f32[8]", "wall time of each drape_stage in the last step, summed over its substeps; "
+              "0 unless a CPU cloth's world profiles stages (drape_world_desc.profile_stages)", unit="ms",
+              cs_type="StageTimes", rev=2),
     ]),
     struct("drape_collider", "ColliderDesc", "One element of the array given to drape_cloth_set_colliders.", [
         field("shape", "u32", "drape_collider_shape", enum="drape_collider_shape"),

@@ -112,6 +112,9 @@ typedef struct drape_world_desc {
     uint32_t struct_size;
     uint32_t thread_count; /**< workers for CPU_THREADED including the caller; 0 = hardware count. Range [0,
                                 256]. Default 0 */
+    uint32_t profile_stages; /**< 1: CPU steps time each stage into drape_stats.stage_ms (a clock read at each
+                                  stage's start and end); 0: no timing. Range [0, 1]. Default 0. Added in
+                                  struct revision 1 (older sizes still accepted) */
 } drape_world_desc;
 /* GENERATED END drape_world_desc */
 
@@ -347,6 +350,22 @@ typedef struct drape_cloth_info {
 /** Sizes of the cloth (see "struct_size" above for out_info->struct_size). */
 DRAPE_API drape_status drape_cloth_get_info(const drape_cloth* cloth, drape_cloth_info* out_info);
 
+/* GENERATED BEGIN drape_stage */
+/* C# twin: Drape.Core.Stage. Stages of a CPU step, in order (drape_stats.stage_ms). */
+typedef enum drape_stage {
+    DRAPE_STAGE_BEGIN = 0, /**< plan substeps, back up the state, the step's spring factors */
+    DRAPE_STAGE_PREDICT = 1, /**< inertial prediction (PBD, XPBD) */
+    DRAPE_STAGE_SOLVE = 2, /**< the model's solve (MASS_SPRING: its Verlet step; IMPLICIT: with its
+                                prediction) */
+    DRAPE_STAGE_TETHER = 3, /**< tethers (max_stretch > 0 and pinned vertices) */
+    DRAPE_STAGE_SELF_COLLIDE = 4, /**< self-collision (when enabled) */
+    DRAPE_STAGE_COLLIDE = 5, /**< touch drag and colliders (when there are any) */
+    DRAPE_STAGE_VERIFY = 6, /**< finite positions, runaway strain, strain statistics */
+    DRAPE_STAGE_FINISH = 7, /**< rollback or commit: colliders advance, sleep check, recentre */
+    DRAPE_STAGE_COUNT = 8
+} drape_stage;
+/* GENERATED END drape_stage */
+
 /* GENERATED BEGIN drape_stats */
 /* C# twin: Drape.Core.Stats. Describes the last step. */
 typedef struct drape_stats {
@@ -363,6 +382,9 @@ typedef struct drape_stats {
     uint32_t unstable_steps; /**< steps rolled back since creation */
     uint32_t sleeping; /**< 1 if the cloth is asleep (drape_sleep_desc): steps do no work. Added in struct
                             revision 1 (older sizes still accepted) */
+    float stage_ms[8]; /**< ms, wall time of each drape_stage in the last step, summed over its substeps; 0
+                            unless a CPU cloth's world profiles stages (drape_world_desc.profile_stages).
+                            Added in struct revision 2 (older sizes still accepted) */
 } drape_stats;
 /* GENERATED END drape_stats */
 

@@ -407,7 +407,7 @@ drape_status drape_world_create(const drape_world_desc* desc, drape_world** out_
     return guarded([&] {
         uint32_t threads = desc->thread_count;
         if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-        auto world = std::make_unique<World>(threads);
+        auto world = std::make_unique<World>(threads, desc->profile_stages != 0);
         *out_world = reinterpret_cast<drape_world*>(handles().add(world.get(), Kind::World));
         world.release();
         return ok();

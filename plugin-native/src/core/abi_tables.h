@@ -20,7 +20,7 @@ template <>
 struct Layout<drape_world_desc> {
     static constexpr const char* name = "drape_world_desc";
     /// Oldest first; the last is sizeof.
-    static constexpr uint32_t sizes[] = {uint32_t(sizeof(drape_world_desc))};
+    static constexpr uint32_t sizes[] = {uint32_t(offsetof(drape_world_desc, profile_stages)), uint32_t(sizeof(drape_world_desc))};
     static drape_world_desc defaults() {
         drape_world_desc s{};
         s.struct_size = sizeof s;
@@ -34,6 +34,8 @@ struct Layout<drape_world_desc> {
         };
         if (!(s.thread_count <= 256u))
             return fail(DRAPE_ERROR_INVALID_ARGUMENT, "thread_count must be in [0, 256]");
+        if (!(s.profile_stages <= 1u))
+            return fail(DRAPE_ERROR_INVALID_ARGUMENT, "profile_stages must be in [0, 1]");
         (void)fail;
         return DRAPE_OK;
     }
@@ -191,7 +193,7 @@ template <>
 struct Layout<drape_stats> {
     static constexpr const char* name = "drape_stats";
     /// Oldest first; the last is sizeof.
-    static constexpr uint32_t sizes[] = {uint32_t(offsetof(drape_stats, sleeping)), uint32_t(sizeof(drape_stats))};
+    static constexpr uint32_t sizes[] = {uint32_t(offsetof(drape_stats, sleeping)), uint32_t(offsetof(drape_stats, stage_ms)), uint32_t(sizeof(drape_stats))};
     static drape_stats defaults() {
         drape_stats s{};
         s.struct_size = sizeof s;

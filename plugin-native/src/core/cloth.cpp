@@ -256,7 +256,7 @@ void Cloth::stats_of_cpu_copy(drape_stats* out) const {
     *out = s;
 }
 
-World::World(uint32_t threads) : pool_(threads) {}
+World::World(uint32_t threads, bool profile_stages) : pool_(threads), profile_stages_(profile_stages) {}
 
 World::~World() {
     for (Cloth* c : std::vector<Cloth*>(cloths_)) delete c;

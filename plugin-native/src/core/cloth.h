@@ -176,9 +176,11 @@ protected:
 
 class World {
 public:
-    explicit World(uint32_t threads);
+    /// profile_stages: CPU steps time their stages (drape_stats.stage_ms, core/profile.h).
+    World(uint32_t threads, bool profile_stages);
     ~World();
     ThreadPool& pool() { return pool_; }
+    bool profile_stages() const { return profile_stages_; }
     void add(Cloth* c) { cloths_.push_back(c); }
     void remove(Cloth* c);
     const std::vector<Cloth*>& cloths() const { return cloths_; }
@@ -186,6 +188,7 @@ public:
 
 private:
     ThreadPool pool_;
+    const bool profile_stages_;
     std::vector<Cloth*> cloths_;
     std::vector<Cloth*> serial_, threaded_;  // per-step scratch, capacity kept
     std::vector<Result> results_;

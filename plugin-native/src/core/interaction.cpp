@@ -94,6 +94,7 @@ bool Cloth::skip_step_asleep() {
     // Asleep: no work at all; the state (and hence every output) stays bit-identical.
     stats_.substeps = 0;
     stats_.step_ms = 0;
+    std::fill_n(stats_.stage_ms, DRAPE_STAGE_COUNT, 0.0f);
     stats_.sleeping = 1;
     return true;
 }

@@ -23,6 +23,7 @@ static const probe_entry k_entries[] = {
     STRUCT(drape_world_desc),
     FIELD(drape_world_desc, struct_size),
     FIELD(drape_world_desc, thread_count),
+    FIELD(drape_world_desc, profile_stages),
 
     STRUCT(drape_cloth_desc),
     FIELD(drape_cloth_desc, struct_size),
@@ -92,6 +93,7 @@ static const probe_entry k_entries[] = {
     FIELD(drape_stats, non_finite),
     FIELD(drape_stats, unstable_steps),
     FIELD(drape_stats, sleeping),
+    FIELD(drape_stats, stage_ms),
 
     STRUCT(drape_collider),
     FIELD(drape_collider, struct_size),
@@ -173,6 +175,15 @@ static const probe_entry k_entries[] = {
     ENUM(DRAPE_COLLIDER_CAPSULE),
     ENUM(DRAPE_COLLIDER_BOX),
     ENUM(DRAPE_COLLIDER_PLANE),
+    ENUM(DRAPE_STAGE_BEGIN),
+    ENUM(DRAPE_STAGE_PREDICT),
+    ENUM(DRAPE_STAGE_SOLVE),
+    ENUM(DRAPE_STAGE_TETHER),
+    ENUM(DRAPE_STAGE_SELF_COLLIDE),
+    ENUM(DRAPE_STAGE_COLLIDE),
+    ENUM(DRAPE_STAGE_VERIFY),
+    ENUM(DRAPE_STAGE_FINISH),
+    ENUM(DRAPE_STAGE_COUNT),
 };
 
 int drape_probe_count(void) { return (int)(sizeof k_entries / sizeof k_entries[0]); }

@@ -88,4 +88,27 @@ namespace Drape.Core
         /// point on it; size ignored.</summary>
         Plane = 3,
     }
+
+    /// <summary>C twin: drape_stage. Stages of a CPU step, in order (drape_stats.stage_ms).</summary>
+    public enum Stage : uint
+    {
+        /// <summary>Plan substeps, back up the state, the step's spring factors.</summary>
+        Begin = 0,
+        /// <summary>Inertial prediction (PBD, XPBD).</summary>
+        Predict = 1,
+        /// <summary>The model's solve (MASS_SPRING: its Verlet step; IMPLICIT: with its
+        /// prediction).</summary>
+        Solve = 2,
+        /// <summary>Tethers (max_stretch &gt; 0 and pinned vertices).</summary>
+        Tether = 3,
+        /// <summary>Self-collision (when enabled).</summary>
+        SelfCollide = 4,
+        /// <summary>Touch drag and colliders (when there are any).</summary>
+        Collide = 5,
+        /// <summary>Finite positions, runaway strain, strain statistics.</summary>
+        Verify = 6,
+        /// <summary>Rollback or commit: colliders advance, sleep check, recentre.</summary>
+        Finish = 7,
+        Count = 8,
+    }
 }

@@ -16,6 +16,10 @@ namespace Drape.Core
         /// <summary>Workers for CPU_THREADED including the caller; 0 = hardware count. Range [0, 256].
         /// Default 0.</summary>
         public uint ThreadCount;
+        /// <summary>1: CPU steps time each stage into drape_stats.stage_ms (a clock read at each stage's
+        /// start and end); 0: no timing. Range [0, 1]. Default 0. Added in struct revision 1 (older sizes
+        /// still accepted).</summary>
+        public uint ProfileStages;
     }
 
     /// <summary>C twin: drape_cloth_desc. Common to grid and mesh creation.</summary>
@@ -180,6 +184,10 @@ namespace Drape.Core
         /// <summary>1 if the cloth is asleep (drape_sleep_desc): steps do no work. Added in struct revision 1
         /// (older sizes still accepted).</summary>
         public uint Sleeping;
+        /// <summary>Ms, wall time of each drape_stage in the last step, summed over its substeps; 0 unless a
+        /// CPU cloth's world profiles stages (drape_world_desc.profile_stages). Added in struct revision 2
+        /// (older sizes still accepted).</summary>
+        public StageTimes StageMs;
     }
 
     /// <summary>C twin: drape_collider. One element of the array given to

@@ -119,4 +119,18 @@ namespace Drape.Core
         public uint Shear;
         public uint Bend;
     }
+
+    /// <summary>One time per <see cref="Stage"/>, ms (C: float[DRAPE_STAGE_COUNT]).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct StageTimes
+    {
+        public float Begin;
+        public float Predict;
+        public float Solve;
+        public float Tether;
+        public float SelfCollide;
+        public float Collide;
+        public float Verify;
+        public float Finish;
+    }
 }

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "backend/cpu/kernels_simd.h"
+#include "core/profile.h"
 
 namespace drape::cpu {
 
@@ -88,10 +89,13 @@ void CpuCloth::recentre() {
 }
 
 // The step reads like a table of contents: one function per stage (drape_stage), each run over
-// all particles before the next.
+// all particles before the next and timed by a profile scope (core/profile.h) when the world
+// profiles stages.
 Result CpuCloth::step(float dt) {
     if (skip_step_asleep()) return {};  // asleep -> no work (core/interaction.cpp)
     const auto t0 = std::chrono::steady_clock::now();
+    profile_ = world_.profile_stages() ? stats_.stage_ms : nullptr;
+    if (profile_) std::fill_n(profile_, DRAPE_STAGE_COUNT, 0.0f);
     begin(dt);
     for (uint32_t sub = 0; sub < substeps_; ++sub) {
         const float along = float(sub + 1) / float(substeps_);  // share of the kinematic particles' move
@@ -109,6 +113,7 @@ Result CpuCloth::step(float dt) {
 }
 
 void CpuCloth::begin(float dt) {
+    ProfileScope scope(profile_, DRAPE_STAGE_BEGIN);
     // Plan: substeps and iterations from the parameters; the state backed up for a rollback.
     const uint32_t n = topo_.particle_count;
     substeps_ = substeps_for(dt);
@@ -166,6 +171,7 @@ glm::vec3 CpuCloth::kinematic_position(uint32_t k, float along) const {
 }
 
 void CpuCloth::predict(float along) {
+    ProfileScope scope(profile_, DRAPE_STAGE_PREDICT);
     // The substep's constants, then PBD/XPBD's inertial prediction: displacements into spare_.
     // (MASS_SPRING predicts inside its one kernel, IMPLICIT inside implicit_substep: both solve.)
     kernels::SubstepContext& c = ctx_;
@@ -184,6 +190,7 @@ void CpuCloth::predict(float along) {
 }
 
 void CpuCloth::solve(float along) {
+    ProfileScope scope(profile_, DRAPE_STAGE_SOLVE);
     const kernels::SubstepContext& c = ctx_;
     Particle* cur = x_.data();
     Particle* disp = d_.data();
@@ -228,12 +235,14 @@ void CpuCloth::solve(float along) {
 }
 
 void CpuCloth::tether() {
+    ProfileScope scope(profile_, DRAPE_STAGE_TETHER);
     Particle* x = x_.data();
     Particle* d = d_.data();
     for_particles([&](uint32_t b, uint32_t e) { kernels::tether(tether_anchor_.data(), tether_length_.data(), x, d, b, e); });
 }
 
 CpuCloth::VerifyPartial CpuCloth::verify() {
+    ProfileScope scope(profile_, DRAPE_STAGE_VERIFY);
     // Finite positions and no runaway strain; strain statistics on the way.
     const uint32_t n = topo_.particle_count;
     const NeighbourTable& nb = topo_.nbr;
@@ -279,6 +288,7 @@ CpuCloth::VerifyPartial CpuCloth::verify() {
 }
 
 Result CpuCloth::finish(float dt, const VerifyPartial& total) {
+    ProfileScope scope(profile_, DRAPE_STAGE_FINISH);
     // Statistics; on failure the state from before the step comes back, else the step commits.
     const uint32_t n = topo_.particle_count;
     stats_.substeps = substeps_;

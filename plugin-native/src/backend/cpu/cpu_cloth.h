@@ -64,6 +64,7 @@ private:
     }
 
     // The step being taken (begin).
+    float* profile_ = nullptr;  ///< stats_.stage_ms while the world profiles stages, else nullptr
     kernels::SubstepContext ctx_{};
     uint32_t substeps_ = 0, iterations_ = 0;
     float h_ = 0;  ///< substep, s

@@ -10,6 +10,7 @@
 #include "backend/cpu/collide.h"
 #include "backend/cpu/cpu_cloth.h"
 #include "backend/cpu/self_collide.h"
+#include "core/profile.h"
 
 namespace drape::cpu {
 namespace {
@@ -62,6 +63,7 @@ float lowest_above_plane(const Aabb& b, const glm::vec3& p, const glm::vec3& n) 
 }  // namespace
 
 void CpuCloth::collide(uint32_t sub) {
+    ProfileScope scope(profile_, DRAPE_STAGE_COLLIDE);
     const uint32_t substeps = substeps_;
     const uint32_t n = topo_.particle_count;
     Particle* x = x_.data();
@@ -120,6 +122,7 @@ void CpuCloth::collide(uint32_t sub) {
 }
 
 void CpuCloth::self_collide() {
+    ProfileScope scope(profile_, DRAPE_STAGE_SELF_COLLIDE);
     const uint32_t n = topo_.particle_count;
     Particle* x = x_.data();
     Particle* d = d_.data();  // this substep's displacement: start = x - d
