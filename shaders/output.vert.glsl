@@ -39,7 +39,7 @@ layout(std140) uniform DrapeSim {
     vec3 u_damping_ratio;       // XPBD: damping / (k h) per group, 0 where off
     vec3 u_gravity;             // m/s^2, drape_params.gravity
     vec3 u_wind;                // m/s, drape_params.wind
-    vec3 u_origin;              // m, the cloth's origin in the caller's space (Cloth::origin, whole metres, exact in float): the output pass adds it
+    vec3 u_origin;              // m, Cloth::origin (whole metres: exact in float); the output pass adds it
 };
 // GENERATED END DrapeSim
 
@@ -60,7 +60,7 @@ vec3 position(int p) { return texelFetch(u_x, texel(p), 0).xyz; }
 void main() {
     int i = int(a_particle);
 #ifdef DRAPE_WRITE_POSITION
-    v_position = position(i) + u_origin;  // one rounding, as Cloth::read's double sum
+    v_position = position(i) + u_origin;  // one rounding, as Cloth::read_cpu_copy's double sum
 #endif
 #ifdef DRAPE_WRITE_NORMAL
     int tris = int(texelFetch(u_info, texel(i), 0).z);

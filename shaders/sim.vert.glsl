@@ -81,7 +81,7 @@ layout(std140) uniform DrapeSim {
     vec3 u_damping_ratio;       // XPBD: damping / (k h) per group, 0 where off
     vec3 u_gravity;             // m/s^2, drape_params.gravity
     vec3 u_wind;                // m/s, drape_params.wind
-    vec3 u_origin;              // m, the cloth's origin in the caller's space (Cloth::origin, whole metres, exact in float): the output pass adds it
+    vec3 u_origin;              // m, Cloth::origin (whole metres: exact in float); the output pass adds it
 };
 // GENERATED END DrapeSim
 // This substep's numbers (computed on the CPU as Cloth::step does, so the shader sees the same bits):

@@ -295,7 +295,8 @@ STRUCTS = [
 # origin: one std140 uniform block shared by all programs (one binding point), uploaded when a value
 # changes instead of set per program and pass. generate.py writes its GLSL declaration into each
 # shader that reads it (between GENERATED markers) and its C++ twin, the struct drape::gles::<cpp> in
-# plugin-native/src/backend/gles/sim_uniforms.h (offsets checked by static_assert). Members are
+# plugin-native/src/backend/gles/sim_uniforms.h (offsets checked by static_assert, and against the
+# driver's layout when a program is linked). Members are
 # u_<name> in GLSL. Types: float, int, vec3 (std140: scalars aligned to 4 bytes, vec3 to 16); scalars
 # come first so none shares a vec3's last word (a layout some mobile drivers get wrong).
 
@@ -315,6 +316,5 @@ UNIFORM_BLOCK = dict(glsl="DrapeSim", cpp="SimUniforms", binding=0,
     ufield("damping_ratio", "vec3", "XPBD: damping / (k h) per group, 0 where off"),
     ufield("gravity", "vec3", "drape_params.gravity", unit="m/s^2"),
     ufield("wind", "vec3", "drape_params.wind", unit="m/s"),
-    ufield("origin", "vec3", "the cloth's origin in the caller's space (Cloth::origin, whole metres, exact in float): "
-                             "the output pass adds it", unit="m"),
+    ufield("origin", "vec3", "Cloth::origin (whole metres: exact in float); the output pass adds it", unit="m"),
 ])

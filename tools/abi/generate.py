@@ -436,7 +436,7 @@ def uniforms_h():
     placed, size = std140(blk)
     out = ["// " + BANNER,
            "// The GLES passes' uniform block: the C++ twin of `uniform %s` in %s" % (blk["glsl"], ", ".join(blk["shaders"])),
-           "// (std140 layout, padding explicit; the offsets are checked below).",
+           "// (std140 layout, padding explicit; the offsets are checked below, and against the driver at link time).",
            "#pragma once", "", "#include <cstddef>", "#include <cstdint>", "", "namespace drape::gles {", "",
            "/// Name of the uniform block in GLSL and the binding point every program attaches it to.",
            'constexpr const char* k%sName = "%s";' % (blk["cpp"], blk["glsl"]),
@@ -456,7 +456,11 @@ def uniforms_h():
     out.append("static_assert(sizeof(%s) == %d, \"std140 size\");" % (blk["cpp"], size))
     for f, offset in placed:
         out.append("static_assert(offsetof(%s, %s) == %d, \"std140 offset\");" % (blk["cpp"], f["name"], offset))
-    out += ["", "}  // namespace drape::gles"]
+    out += ["", "/// GLSL member names and their std140 offsets: the backend checks the driver's layout against them",
+            "/// when it links a program.", "constexpr struct {", "    const char* glsl;", "    uint32_t offset;",
+            "} k%sMembers[] = {" % blk["cpp"]]
+    out += ['    {"u_%s", %d},' % (f["name"], offset) for f, offset in placed]
+    out += ["};", "", "}  // namespace drape::gles"]
     return "\n".join(out) + "\n"
 
 

@@ -182,6 +182,28 @@ std::string with_defines(const char* source, const std::string& defines) {
     return s.substr(0, eol + 1) + defines + s.substr(eol + 1);
 }
 
+/// The driver's layout of the uniform block must be the generated one (std140 fixes it; a driver
+/// that disagreed would feed every pass wrong parameters without an error).
+Result check_block_layout(GLuint program, GLuint block) {
+    GLint size = 0;
+    glGetActiveUniformBlockiv(program, block, GL_UNIFORM_BLOCK_DATA_SIZE, &size);
+    std::string wrong;
+    if (size != GLint(sizeof(SimUniforms)))
+        wrong = " size " + std::to_string(size) + " (expected " + std::to_string(sizeof(SimUniforms)) + ")";
+    for (const auto& m : kSimUniformsMembers) {
+        GLuint index = GL_INVALID_INDEX;
+        glGetUniformIndices(program, 1, &m.glsl, &index);
+        if (index == GL_INVALID_INDEX) continue;  // unused by this program
+        GLint offset = -1;
+        glGetActiveUniformsiv(program, 1, &index, GL_UNIFORM_OFFSET, &offset);
+        if (offset != GLint(m.offset))
+            wrong += std::string(" ") + m.glsl + " at " + std::to_string(offset) + " (expected " + std::to_string(m.offset) + ")";
+    }
+    if (wrong.empty()) return {};
+    return {DRAPE_ERROR_GL, std::string("uniform block ") + kSimUniformsName +
+                                " is laid out differently by this driver than in sim_uniforms.h:" + wrong};
+}
+
 Result link(const std::string& vs_source, const char* name, const std::vector<std::string>& varyings,
             GLenum buffer_mode, const std::vector<std::pair<GLuint, const char*>>& attribs, GLuint* out) {
     GLuint vs = 0, fs = 0;
@@ -212,8 +234,13 @@ Result link(const std::string& vs_source, const char* name, const std::vector<st
     glUseProgram(p);
     for (const auto& s : kSamplers)
         if (const GLint at = glGetUniformLocation(p, s.name); at >= 0) glUniform1i(at, s.unit);
-    if (const GLuint block = glGetUniformBlockIndex(p, kSimUniformsName); block != GL_INVALID_INDEX)
+    if (const GLuint block = glGetUniformBlockIndex(p, kSimUniformsName); block != GL_INVALID_INDEX) {
         glUniformBlockBinding(p, block, kSimUniformsBinding);
+        if (Result r = check_block_layout(p, block); !r.ok()) {
+            glDeleteProgram(p);
+            return r;
+        }
+    }
     *out = p;
     return {};
 }
