@@ -47,7 +47,7 @@ TEST(AbiVersions, CurrentStructsStillHaveTheAbi1Layout) {
     EXPECT_EQ(sizeof(drape_params), kAbi1Params);
     EXPECT_EQ(offsetof(drape_vertex_layout, origin), kAbi1VertexLayout);  // revision 1 added `origin`
     EXPECT_EQ(sizeof(drape_pin), kAbi1Pin);
-    EXPECT_EQ(sizeof(drape_cloth_info), kAbi1ClothInfo);
+    EXPECT_EQ(offsetof(drape_cloth_info, description_id), kAbi1ClothInfo);  // revision 1 added `description_*`
     EXPECT_EQ(offsetof(drape_stats, sleeping), kAbi1StatsOld);
     EXPECT_EQ(offsetof(drape_stats, stage_ms), kAbi1Stats);  // revision 2 added `stage_ms`
     EXPECT_EQ(sizeof(drape_collider), kAbi1Collider);
@@ -148,12 +148,12 @@ TEST(AbiVersions, OutStructsWriteTheRevisionAskedFor) {
     EXPECT_EQ(drape_cloth_get_stats(c, bad_stats.get()), DRAPE_ERROR_STRUCT_SIZE);
 
     for (uint32_t unset : {0u, 3u, 0xABABABABu}) {
-        Abi1Buffer<drape_cloth_info> info(drape_cloth_info{}, sizeof(drape_cloth_info));
+        Abi1Buffer<drape_cloth_info> info(drape_cloth_info{}, kAbi1ClothInfo);
         info.get()->struct_size = unset;
         ASSERT_DRAPE_OK(drape_cloth_get_info(c, info.get()));
-        EXPECT_EQ(info.get()->struct_size, sizeof(drape_cloth_info));
+        EXPECT_EQ(info.get()->struct_size, kAbi1ClothInfo);
         EXPECT_EQ(info.get()->vertex_count, 16u);
-        EXPECT_TRUE(info.tail_untouched(sizeof(drape_cloth_info)));
+        EXPECT_TRUE(info.tail_untouched(kAbi1ClothInfo));
         Abi1Buffer<drape_params> params(drape_params{}, sizeof(drape_params));
         params.get()->struct_size = unset;
         ASSERT_DRAPE_OK(drape_cloth_get_params(c, params.get()));

@@ -173,6 +173,10 @@ STRUCTS = [
         field("spring_count", "u32[3]", "springs/constraints per drape_group", cs_type="GroupCounts"),
         field("triangle_count", "u32", "0 for a grid with a single row or column"),
         field("backend", "u32", "drape_backend", enum="drape_backend"),
+        field("description_id", "u32", "its cooked description (topology, rest lengths, masses): cloths of one world "
+              "created from identical input (the same grid or mesh bytes and total_mass) share one and report the "
+              "same id", rev=1),
+        field("description_users", "u32", "cloths using that description, this one included", rev=1),
     ]),
     struct("drape_stats", "Stats", "Describes the last step.", direction="out", fields=[
         field("step_ms", "f32", "wall time of the last step", unit="ms"),

@@ -344,6 +344,12 @@ typedef struct drape_cloth_info {
     uint32_t spring_count[3]; /**< springs/constraints per drape_group */
     uint32_t triangle_count; /**< 0 for a grid with a single row or column */
     uint32_t backend; /**< drape_backend */
+    uint32_t description_id; /**< its cooked description (topology, rest lengths, masses): cloths of one world
+                                  created from identical input (the same grid or mesh bytes and total_mass)
+                                  share one and report the same id. Added in struct revision 1 (older sizes
+                                  still accepted) */
+    uint32_t description_users; /**< cloths using that description, this one included. Added in struct
+                                     revision 1 (older sizes still accepted) */
 } drape_cloth_info;
 /* GENERATED END drape_cloth_info */
 

@@ -274,12 +274,42 @@ drape_status check_layout(const drape_vertex_layout* layout) {
     return DRAPE_OK;
 }
 
-// origin: where topo's coordinates start in the caller's space (Cloth::origin).
-drape_status finish_create(drape_world* world, const drape_cloth_desc* desc, Topology topo, drape_cloth** out,
+// Keys of cooked descriptions (World::describe): the exact bytes a cloth is cooked from.
+template <class T>
+void append_bytes(std::string& key, const T* data, size_t count) {
+    key.append(reinterpret_cast<const char*>(data), count * sizeof(T));
+}
+
+std::string grid_key(const drape_grid_desc& grid, float total_mass) {
+    static_assert(sizeof(drape_grid_desc) == 14 * 4, "drape_grid_desc: 4-byte fields, no padding bytes");
+    std::string key = "grid";
+    append_bytes(key, &grid, 1);
+    append_bytes(key, &total_mass, 1);
+    return key;
+}
+
+std::string mesh_key(const drape_mesh_desc& mesh, float total_mass) {
+    std::string key = "mesh";
+    append_bytes(key, &mesh.vertex_count, 1);
+    append_bytes(key, &mesh.index_count, 1);
+    append_bytes(key, &mesh.weld_distance, 1);
+    append_bytes(key, &total_mass, 1);
+    append_bytes(key, mesh.positions, size_t(mesh.vertex_count) * 3);
+    append_bytes(key, mesh.indices, mesh.index_count);
+    return key;
+}
+
+// key and cook: the cloth's description (World::describe). origin: where its coordinates start
+// in the caller's space (Cloth::origin).
+drape_status finish_create(drape_world* world, const drape_cloth_desc* desc, const std::string& key,
+                           const std::function<CookResult(Topology&)>& cook, drape_cloth** out,
                            const glm::dvec3& origin) {
     World& w = *as_world(world);
+    CookResult cooked;
+    std::shared_ptr<const Description> description = w.describe(key, cook, &cooked);
+    if (!description) return fail(cooked.status, cooked.message);
     std::unique_ptr<Cloth> owned;
-    if (Result r = create_cloth(w, drape_backend(desc->backend), std::move(topo), &owned); !r.ok())
+    if (Result r = create_cloth(w, drape_backend(desc->backend), std::move(description), &owned); !r.ok())
         return fail(r.status, r.message);
     Cloth* cloth = owned.get();
     cloth->set_origin(origin);
@@ -446,7 +476,12 @@ drape_status drape_cloth_create_grid(drape_world* world, const drape_cloth_desc*
         const glm::dvec3 origin = initial_origin(grid->origin);
         drape_grid_desc local = *grid;
         for (int k = 0; k < 3; ++k) local.origin[k] = float(double(grid->origin[k]) - origin[k]);
-        return finish_create(world, desc, cook_grid(local, desc->total_mass), out_cloth, origin);
+        const float mass = desc->total_mass;
+        auto cook = [&](Topology& t) {
+            t = cook_grid(local, mass);
+            return CookResult{};
+        };
+        return finish_create(world, desc, grid_key(local, mass), cook, out_cloth, origin);
     });
 }
 
@@ -467,10 +502,9 @@ drape_status drape_cloth_create_mesh(drape_world* world, const drape_cloth_desc*
             for (size_t k = 0; k < shifted.size(); ++k) shifted[k] = float(double(mesh->positions[k]) - origin[k % 3]);
             local.positions = shifted.data();
         }
-        Topology topo;
-        CookResult r = cook_mesh(local, desc->total_mass, topo);
-        if (r.status != DRAPE_OK) return fail(r.status, r.message);
-        return finish_create(world, desc, std::move(topo), out_cloth, origin);
+        const float mass = desc->total_mass;
+        auto cook = [&](Topology& t) { return cook_mesh(local, mass, t); };
+        return finish_create(world, desc, mesh_key(local, mass), cook, out_cloth, origin);
     });
 }
 
@@ -620,6 +654,8 @@ drape_status drape_cloth_get_info(const drape_cloth* cloth, drape_cloth_info* ou
     for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) info.spring_count[g] = t.spring_count[g];
     info.triangle_count = uint32_t(t.triangles.size() / 3);
     info.backend = c->backend();
+    info.description_id = c->description().id;
+    info.description_users = c->description_users();
     write_out(info, out_info, lenient_out_size(out_info));
     return ok();
 }

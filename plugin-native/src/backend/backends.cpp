@@ -23,21 +23,22 @@ Result backend_available(drape_backend backend) {
             "backend " + std::to_string(backend) + " is not available in this build or on this thread"};
 }
 
-Result create_cloth(World& world, drape_backend backend, Topology topology, std::unique_ptr<Cloth>* out) {
+Result create_cloth(World& world, drape_backend backend, std::shared_ptr<const Description> description,
+                    std::unique_ptr<Cloth>* out) {
 #ifdef DRAPE_WITH_GLES
     if (backend == DRAPE_BACKEND_GLES) {
         // A context current here: GL work happens in the caller's calls. None (Unity main thread
         // with an OpenGLES3 device): calls record, the render event does the GL work.
         const bool here = gles::context_current();
         auto g = std::make_unique<gles::GlesCloth>(
-            world, std::move(topology), here ? gles::GlesCloth::Mode::Immediate : gles::GlesCloth::Mode::RenderThread);
+            world, std::move(description), here ? gles::GlesCloth::Mode::Immediate : gles::GlesCloth::Mode::RenderThread);
         if (here)
             if (Result r = g->init_gl(); !r.ok()) return r;
         *out = std::move(g);
         return {};
     }
 #endif
-    *out = std::make_unique<cpu::CpuCloth>(world, backend, std::move(topology));
+    *out = std::make_unique<cpu::CpuCloth>(world, backend, std::move(description));
     return {};
 }
 

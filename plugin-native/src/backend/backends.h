@@ -12,6 +12,7 @@ namespace drape {
 Result backend_available(drape_backend backend);
 
 /// A new cloth of an available backend in `world` (not yet added to it).
-Result create_cloth(World& world, drape_backend backend, Topology topology, std::unique_ptr<Cloth>* out);
+Result create_cloth(World& world, drape_backend backend, std::shared_ptr<const Description> description,
+                    std::unique_ptr<Cloth>* out);
 
 }  // namespace drape

@@ -181,7 +181,7 @@ template <>
 struct Layout<drape_cloth_info> {
     static constexpr const char* name = "drape_cloth_info";
     /// Oldest first; the last is sizeof.
-    static constexpr uint32_t sizes[] = {uint32_t(sizeof(drape_cloth_info))};
+    static constexpr uint32_t sizes[] = {uint32_t(offsetof(drape_cloth_info, description_id)), uint32_t(sizeof(drape_cloth_info))};
     static drape_cloth_info defaults() {
         drape_cloth_info s{};
         s.struct_size = sizeof s;

@@ -10,8 +10,23 @@
 
 namespace drape {
 
-Cloth::Cloth(World& world, drape_backend backend, Topology topology)
-    : world_(world), backend_(backend), topo_(std::move(topology)), params_(default_params()) {
+Description::Description(Topology cooked, uint32_t id_in_world) : id(id_in_world), topology(std::move(cooked)) {
+    const uint32_t n = topology.particle_count;
+    const NeighbourTable& nb = topology.nbr;
+    col_index.resize(nb.index.size());
+    col_rest.resize(nb.rest.size());
+    col_group.resize(nb.group.size());
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t s = 0; s < nb.slots; ++s) {
+            col_index[size_t(s) * n + i] = nb.index[size_t(i) * nb.slots + s];
+            col_rest[size_t(s) * n + i] = nb.rest[size_t(i) * nb.slots + s];
+            col_group[size_t(s) * n + i] = nb.group[size_t(i) * nb.slots + s];
+        }
+}
+
+Cloth::Cloth(World& world, drape_backend backend, std::shared_ptr<const Description> description)
+    : world_(world), backend_(backend), desc_(std::move(description)), topo_(desc_->topology),
+      params_(default_params()) {
     const uint32_t n = topo_.particle_count;
     base_inverse_mass_.resize(n);
     for (uint32_t i = 0; i < n; ++i) base_inverse_mass_[i] = 1.0f / topo_.mass[i];
@@ -257,6 +272,23 @@ void Cloth::stats_of_cpu_copy(drape_stats* out) const {
 }
 
 World::World(uint32_t threads, bool profile_stages) : pool_(threads), profile_stages_(profile_stages) {}
+
+std::shared_ptr<const Description> World::describe(const std::string& key,
+                                                   const std::function<CookResult(Topology&)>& cook,
+                                                   CookResult* result) {
+    *result = {};
+    // Forget descriptions no cloth uses any more; reuse a live one cooked from the same bytes.
+    for (auto it = descriptions_.begin(); it != descriptions_.end();)
+        it = it->second.expired() ? descriptions_.erase(it) : std::next(it);
+    auto found = descriptions_.find(key);
+    if (found != descriptions_.end()) return found->second.lock();
+    Topology topology;
+    *result = cook(topology);
+    if (result->status != DRAPE_OK) return nullptr;
+    auto cooked = std::make_shared<const Description>(std::move(topology), ++descriptions_cooked_);
+    descriptions_[key] = cooked;
+    return cooked;
+}
 
 World::~World() {
     for (Cloth* c : std::vector<Cloth*>(cloths_)) delete c;

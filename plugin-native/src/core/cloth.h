@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/ext/vector_double3.hpp>
@@ -13,6 +14,7 @@
 #include <glm/vec4.hpp>
 
 #include "backend/cpu/thread_pool.h"
+#include "core/description.h"
 #include "core/interaction.h"  // colliders, drag, owner, sleep
 #include "core/params.h"
 #include "core/self_collision.h"  // self-collision
@@ -46,7 +48,7 @@ public:
     /// after), or leaves it (parameters, pin targets).
     enum class Access { ReadsState, WritesState, NoState };
 
-    Cloth(World& world, drape_backend backend, Topology topology);
+    Cloth(World& world, drape_backend backend, std::shared_ptr<const Description> description);
     virtual ~Cloth() = default;
 
     // ---- the backend interface ----
@@ -70,6 +72,9 @@ public:
     World& world() const { return world_; }
     drape_backend backend() const { return backend_; }
     const Topology& topology() const { return topo_; }
+    const Description& description() const { return *desc_; }
+    /// Cloths sharing this one's description, this one included.
+    uint32_t description_users() const { return uint32_t(desc_.use_count()); }
     const drape_params& params() const { return params_; }
     bool is_pinned(uint32_t vertex) const { return pinned_[topo_.vertex_to_particle[vertex]] != 0; }
 
@@ -144,7 +149,8 @@ protected:
 
     World& world_;
     const drape_backend backend_;
-    const Topology topo_;
+    const std::shared_ptr<const Description> desc_;
+    const Topology& topo_;  ///< desc_->topology
     drape_params params_;
 
     // CPU copy of the run-time state: positions x_ and displacements over the last substep d_
@@ -186,12 +192,20 @@ public:
     const std::vector<Cloth*>& cloths() const { return cloths_; }
     Result step(float dt);
 
+    /// The cooked description of `key` (the exact input bytes it is cooked from): the one a cloth
+    /// of this world already uses, or a new one that cook(topology) fills; nullptr when cook fails
+    /// (*result says why).
+    std::shared_ptr<const Description> describe(const std::string& key,
+                                                const std::function<CookResult(Topology&)>& cook, CookResult* result);
+
 private:
     ThreadPool pool_;
     const bool profile_stages_;
     std::vector<Cloth*> cloths_;
     std::vector<Cloth*> serial_, threaded_;  // per-step scratch, capacity kept
     std::vector<Result> results_;
+    std::unordered_map<std::string, std::weak_ptr<const Description>> descriptions_;  ///< by key
+    uint32_t descriptions_cooked_ = 0;
 };
 
 }  // namespace drape

@@ -79,6 +79,8 @@ static const probe_entry k_entries[] = {
     FIELD(drape_cloth_info, spring_count),
     FIELD(drape_cloth_info, triangle_count),
     FIELD(drape_cloth_info, backend),
+    FIELD(drape_cloth_info, description_id),
+    FIELD(drape_cloth_info, description_users),
 
     STRUCT(drape_stats),
     FIELD(drape_stats, struct_size),

@@ -155,6 +155,13 @@ namespace Drape.Core
         public uint TriangleCount;
         /// <summary>Drape_backend.</summary>
         public Backend Backend;
+        /// <summary>Its cooked description (topology, rest lengths, masses): cloths of one world created from
+        /// identical input (the same grid or mesh bytes and total_mass) share one and report the same id.
+        /// Added in struct revision 1 (older sizes still accepted).</summary>
+        public uint DescriptionId;
+        /// <summary>Cloths using that description, this one included. Added in struct revision 1 (older sizes
+        /// still accepted).</summary>
+        public uint DescriptionUsers;
     }
 
     /// <summary>C twin: drape_stats. Describes the last step.</summary>

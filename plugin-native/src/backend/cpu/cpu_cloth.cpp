@@ -13,24 +13,14 @@
 
 namespace drape::cpu {
 
-CpuCloth::CpuCloth(World& world, drape_backend backend, Topology topology)
-    : Cloth(world, backend, std::move(topology)) {
+CpuCloth::CpuCloth(World& world, drape_backend backend, std::shared_ptr<const Description> description)
+    : Cloth(world, backend, std::move(description)) {
     const uint32_t n = topo_.particle_count;
     spare_.resize(n);
     spare2_.resize(n);
     lambda_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
     target_.resize(n);
     slot_coef_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
-    const NeighbourTable& nb = topo_.nbr;
-    col_index_.resize(nb.index.size());
-    col_rest_.resize(nb.rest.size());
-    col_group_.resize(nb.group.size());
-    for (uint32_t i = 0; i < n; ++i)
-        for (uint32_t s = 0; s < nb.slots; ++s) {
-            col_index_[size_t(s) * n + i] = nb.index[size_t(i) * nb.slots + s];
-            col_rest_[size_t(s) * n + i] = nb.rest[size_t(i) * nb.slots + s];
-            col_group_[size_t(s) * n + i] = nb.group[size_t(i) * nb.slots + s];
-        }
     kinematic_start_.resize(n);
     backup_x_.resize(n);
     backup_d_.resize(n);
@@ -139,9 +129,9 @@ void CpuCloth::begin(float dt) {
     c.active_count = active_count_.data();
     c.slots = nb.slots;
     c.stride = n;
-    c.col_index = col_index_.data();
-    c.col_rest = col_rest_.data();
-    c.col_group = col_group_.data();
+    c.col_index = desc_->col_index.data();
+    c.col_rest = desc_->col_rest.data();
+    c.col_group = desc_->col_group.data();
     c.lambda = model == DRAPE_MODEL_XPBD && iterations_ > 1 ? lambda_.data() : nullptr;
     for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) {
         const float k = params_.stiffness[g];

@@ -15,7 +15,7 @@ namespace drape::cpu {
 
 class CpuCloth final : public Cloth {
 public:
-    CpuCloth(World& world, drape_backend backend, Topology topology);
+    CpuCloth(World& world, drape_backend backend, std::shared_ptr<const Description> description);
 
     Result step(float dt) override;
     Result edit(Access access, std::function<void(Cloth&)> fn) override;
@@ -81,10 +81,6 @@ private:
     void factor_implicit(float h);
     float last_h_ = 0;  ///< substep of the last step, s (0: none yet)
     std::vector<float> slot_coef_;  ///< per-spring Jacobi factor of the current step (kernels.h)
-    // Column-major copy of the neighbour table for the constraint iteration (kernels.h).
-    std::vector<uint32_t> col_index_;
-    std::vector<float> col_rest_;
-    std::vector<uint8_t> col_group_;
 
     std::vector<glm::vec3> kinematic_start_;  ///< kinematic particles' positions at the start of the step
 

@@ -315,8 +315,8 @@ void release_gl(GlObjects& objects) {
     objects = GlObjects{};
 }
 
-GlesCloth::GlesCloth(World& world, Topology topology, Mode mode)
-    : Cloth(world, DRAPE_BACKEND_GLES, std::move(topology)), mode_(mode) {
+GlesCloth::GlesCloth(World& world, std::shared_ptr<const Description> description, Mode mode)
+    : Cloth(world, DRAPE_BACKEND_GLES, std::move(description)), mode_(mode) {
     // Incident triangles per particle, in triangle order (the order Cloth::read_cpu_copy sums them).
     std::vector<uint32_t> incident(topo_.particle_count, 0);
     for (uint32_t p : topo_.triangles) ++incident[p];

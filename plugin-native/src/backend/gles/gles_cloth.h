@@ -70,7 +70,7 @@ class GlesCloth final : public Cloth {
 public:
     enum class Mode { Immediate, RenderThread };
 
-    GlesCloth(World& world, Topology topology, Mode mode);
+    GlesCloth(World& world, std::shared_ptr<const Description> description, Mode mode);
     ~GlesCloth() override;
 
     Mode mode() const { return mode_; }
