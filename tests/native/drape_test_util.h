@@ -59,6 +59,25 @@ inline drape_cloth* make_chain(drape_world* w, uint32_t links, float rest, float
     return c;
 }
 
+/// A collider at (x, y, z), unrotated, size (s0, s1, s2) as drape_collider_shape says; 1 cm margin,
+/// friction 0.5.
+inline drape_collider collider(drape_collider_shape shape, float x, float y, float z, float s0 = 0, float s1 = 0,
+                               float s2 = 0) {
+    drape_collider c{};
+    c.struct_size = sizeof c;
+    c.shape = shape;
+    c.position[0] = x;
+    c.position[1] = y;
+    c.position[2] = z;
+    c.rotation[3] = 1;
+    c.size[0] = s0;
+    c.size[1] = s1;
+    c.size[2] = s2;
+    c.margin = 0.01f;
+    c.friction = 0.5f;
+    return c;
+}
+
 inline std::vector<float> positions(const drape_cloth* c) {
     drape_cloth_info info{sizeof info};
     drape_cloth_get_info(c, &info);

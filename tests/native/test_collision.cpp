@@ -11,23 +11,6 @@ using namespace drape_test;
 
 namespace {
 
-drape_collider collider(drape_collider_shape shape, float x, float y, float z, float s0 = 0, float s1 = 0,
-                        float s2 = 0) {
-    drape_collider c{};
-    c.struct_size = sizeof c;
-    c.shape = shape;
-    c.position[0] = x;
-    c.position[1] = y;
-    c.position[2] = z;
-    c.rotation[3] = 1;
-    c.size[0] = s0;
-    c.size[1] = s1;
-    c.size[2] = s2;
-    c.margin = 0.01f;
-    c.friction = 0.5f;
-    return c;
-}
-
 // Quaternion for an angle (rad) about a unit axis.
 void set_rotation(drape_collider& c, float ax, float ay, float az, float angle) {
     const float s = std::sin(angle / 2);

@@ -38,14 +38,7 @@ void add_optional_work(drape_cloth* c) {
     drape_params p = params_of(c);
     p.max_stretch = 0.1f;
     EXPECT_DRAPE_OK(drape_cloth_set_params(c, &p));
-    drape_collider sphere{};
-    sphere.struct_size = sizeof sphere;
-    sphere.shape = DRAPE_COLLIDER_SPHERE;
-    sphere.position[0] = 0.5f;
-    sphere.position[1] = -0.4f;
-    sphere.position[2] = -0.5f;
-    sphere.rotation[3] = 1;
-    sphere.size[0] = 0.2f;
+    const drape_collider sphere = collider(DRAPE_COLLIDER_SPHERE, 0.5f, -0.4f, -0.5f, 0.2f);
     EXPECT_DRAPE_OK(drape_cloth_set_colliders(c, &sphere, 1));
     drape_self_collision_desc sc{sizeof sc, 1, 0.02f, 0};
     EXPECT_DRAPE_OK(drape_cloth_set_self_collision(c, &sc));

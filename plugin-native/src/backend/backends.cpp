@@ -30,8 +30,8 @@ Result create_cloth(World& world, drape_backend backend, std::shared_ptr<const D
         // A context current here: GL work happens in the caller's calls. None (Unity main thread
         // with an OpenGLES3 device): calls record, the render event does the GL work.
         const bool here = gles::context_current();
-        auto g = std::make_unique<gles::GlesCloth>(
-            world, std::move(description), here ? gles::GlesCloth::Mode::Immediate : gles::GlesCloth::Mode::RenderThread);
+        const auto mode = here ? gles::GlesCloth::Mode::Immediate : gles::GlesCloth::Mode::RenderThread;
+        auto g = std::make_unique<gles::GlesCloth>(world, std::move(description), mode);
         if (here)
             if (Result r = g->init_gl(); !r.ok()) return r;
         *out = std::move(g);

@@ -228,7 +228,9 @@ void CpuCloth::tether() {
     ProfileScope scope(profile_, DRAPE_STAGE_TETHER);
     Particle* x = x_.data();
     Particle* d = d_.data();
-    for_particles([&](uint32_t b, uint32_t e) { kernels::tether(tether_anchor_.data(), tether_length_.data(), x, d, b, e); });
+    const uint32_t* anchor = tether_anchor_.data();
+    const float* length = tether_length_.data();
+    for_particles([&](uint32_t b, uint32_t e) { kernels::tether(anchor, length, x, d, b, e); });
 }
 
 CpuCloth::VerifyPartial CpuCloth::verify() {
@@ -321,7 +323,8 @@ Result CpuCloth::stats(drape_stats* out) {
 }
 
 Result CpuCloth::set_output(uint32_t, const drape_vertex_layout&) {
-    return {DRAPE_ERROR_INVALID_ARGUMENT, "an output GL buffer needs a GLES cloth; use drape_cloth_read for CPU cloths"};
+    return {DRAPE_ERROR_INVALID_ARGUMENT,
+            "an output GL buffer needs a GLES cloth; use drape_cloth_read for CPU cloths"};
 }
 
 }  // namespace drape::cpu

@@ -262,7 +262,7 @@ inline void implicit_predict(const SubstepContext& c, const Particle* x, const P
 ///   Phi(d) = sum_i |d_i - y_i|^2 / (2 w_i h^2) + sum_springs k/2 (|x_i - x_j| - L)^2
 /// (plus a dashpot kd along each spring) over the substep's displacements d, x = start + d. This
 /// kernel writes the force residual  r_i = -grad_i Phi = F_i - (d_i - y_i) / (w_i h^2)  (N; 0 for
-/// kinematic particles); Cloth::implicit_substep turns it into a step with a prefactored global
+/// kinematic particles); CpuCloth::implicit_substep turns it into a step with a prefactored global
 /// solve. Any iteration of the form d += P^-1 r has grad Phi = 0 as its fixed point: at rest the
 /// first iterate is d = 0 (implicit_predict) and y = h^2 g, so a substep that stays at rest is
 /// one where the spring forces balance m g exactly, the springs' own equilibrium, whatever the

@@ -679,7 +679,7 @@ void GlesCloth::use_uniforms(float h) {
     u.jacobi_coupling = kJacobiCoupling;
     u.tex_width = GLint(kTexWidth);
     for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) {
-        const float k = params_.stiffness[g];  // as Cloth::step computes them
+        const float k = params_.stiffness[g];  // as CpuCloth::begin computes them
         u.stiffness[g] = k;
         u.compliance[g] = k > 0 ? 1.0f / (k * h * h) : 0.0f;
         u.damping_ratio[g] = k > 0 ? params_.damping / (k * h) : 0.0f;
@@ -903,7 +903,7 @@ Result GlesCloth::gpu_step(float dt) {
     const int first = model == DRAPE_MODEL_MASS_SPRING ? kMassSpring : kPredict;
     Program *p_first = nullptr, *p_constraint = nullptr, *p_commit = nullptr, *p_tether = nullptr;
     if (Result r = program(first, &p_first); !r.ok()) return r;
-    if (has_tethers())  // else no tether program and no tether pass (Cloth::step's condition)
+    if (has_tethers())  // else no tether program and no tether pass (CpuCloth::step's condition)
         if (Result r = program(kTether, &p_tether); !r.ok()) return r;
     // Interaction (CpuCloth::collide): colliders in every substep, drag in the first.
     // Variants: DRAPE_SHAPES = collider capacity (power of two >= 4, 0 without colliders).
@@ -963,13 +963,13 @@ Result GlesCloth::gpu_step(float dt) {
         glBindBuffer(GL_ARRAY_BUFFER, 0);
     }
     use_uniforms(h);
-    // Buffer roles as Cloth::step: cur (positions x), disp (displacements d), spare, spare2.
+    // Buffer roles as CpuCloth::solve: cur (positions x), disp (displacements d), spare, spare2.
     int& cur = g_[0];
     int& disp = g_[1];
     int& spare = g_[2];
     int& spare2 = g_[3];
     for (uint32_t s = 0; s < substeps; ++s) {
-        // Computed on the CPU exactly as Cloth::step does, so the shader sees the same bits.
+        // Computed on the CPU exactly as CpuCloth::predict does, so the shader sees the same bits.
         const glm::vec4 sub(1.0f / h_prev_, h / h_prev_, fresh_ ? 0.5f * h : 0.5f * (h + h_prev_),
                             float(s + 1) / float(substeps));
         if (model == DRAPE_MODEL_MASS_SPRING) {
