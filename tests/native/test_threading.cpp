@@ -61,8 +61,9 @@ TEST(Threading, WorldStepsThreadedAndSingleThreadedClothsTogether) {
     WorldPtr ref = make_world(1);
     std::vector<drape_cloth*> a, b;
     // Cloth 0 (48^2 = 2304 particles) is large enough for its passes to be split over the pool
-    // (ThreadPool::kMinParallelCount); the small ones are spread over it whole.
-    const uint32_t sizes[] = {48, 10, 12, 14, 16};
+    // (ThreadPool::kMinParallelCount); the small ones are spread over it whole. Cloths 1 and 2 are
+    // identical, so they share one cooked description, read by two pool threads at once.
+    const uint32_t sizes[] = {48, 12, 12, 14, 16};
     for (int k = 0; k < 5; ++k) {
         a.push_back(pinned_grid(w.get(), sizes[k], kinds[k]));
         b.push_back(pinned_grid(ref.get(), sizes[k], DRAPE_BACKEND_CPU));
