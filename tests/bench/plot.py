@@ -148,6 +148,7 @@ def fig6(out, rows, meta, lines):
     sizes = sorted({int(r["size"]) for r in rows})
     backends = [b for b in ("cpu", "cpu_threaded", "gles") if any(r["backend"] == b for r in rows)]
     idx = {(r["model"], r["backend"], int(r["size"])): r for r in rows}
+    models = [m for m in MODELS if any(r["model"] == m for r in rows)]
     lines.append("## Throughput (seed, paper Fig. 6)\n")
     lines.append("Hanging cloth (1 m, 0.2 kg, two top corners pinned), library defaults per model (automatic "
                  f"substeps and iterations, as throughput.csv records them; tethers max_stretch "
@@ -157,7 +158,7 @@ def fig6(out, rows, meta, lines):
     lines.append("| model | backend | " + " | ".join(f"{s}^2 ms/step" for s in sizes) + " | " +
                  " | ".join(f"{s}^2 M vit/s" for s in sizes) + " | max strain at " + f"{sizes[-1]}^2 |")
     lines.append("|" + "---|" * (3 + 2 * len(sizes)))
-    for m in [m for m in MODELS if any(r["model"] == m for r in rows)]:
+    for m in models:
         for be in backends:
             cells = [idx.get((m, be, s)) for s in sizes]
             ms = [(f"{num(c['ms_median']):.2f}" if c["ok"] == "1" else "unstable") if c else "" for c in cells]
@@ -178,7 +179,7 @@ def fig6(out, rows, meta, lines):
     lines.append("| model | " + " | ".join(f"{s}^2 CPU / 15M" for s in sizes) + " | " +
                  " | ".join(f"{s}^2 threaded speed-up" for s in sizes) + " |")
     lines.append("|" + "---|" * (1 + 2 * len(sizes)))
-    for m in [m for m in MODELS if any(r["model"] == m for r in rows)]:
+    for m in models:
         r1 = []
         r2 = []
         for s in sizes:
