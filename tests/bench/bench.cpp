@@ -1,5 +1,5 @@
 // drape_bench: run time against error, stability stress and the paper's measurements
-// (docs/accuracy.md; issues 2 and 6). Uses the library through the C ABI only and writes CSV
+// (docs/accuracy.md). Uses the library through the C ABI only and writes CSV
 // files into --out; tests/bench/plot.py turns them into PNGs and REPORT.md.
 //
 //   drape_bench [--quick] [--out DIR] [--only a,b,...] [--threads N]

@@ -18,7 +18,7 @@ REF_VIT = 15e6  # a well-known engine's XPBD cloth, vertex-iterations/s per core
 MODELS = ["mass_spring", "pbd", "xpbd", "implicit"]
 COLOURS = {"mass_spring": "tab:blue", "pbd": "tab:orange", "xpbd": "tab:green", "implicit": "tab:red"}
 # Jolt Physics 5.5 soft bodies on the curtain of rest.csv (identical 12-spring network, pins, masses,
-# stiffness), as filed with the solver issue: hanging-length error at rest per size and iteration
+# stiffness), as measured for the solver's comparison: hanging-length error at rest per size and iteration
 # count, and the cheapest Jolt setting within 1 % and 0.1 % with its ms per 60 Hz step (one core,
 # medians of 5 interleaved rounds; LRA where cheaper).
 JOLT = "Jolt 5.5, measured on a 2-vCPU x86-64 VM"
@@ -475,8 +475,8 @@ def rest(out, rows, meta, lines):
 
 
 def jolt_points(ax):
-    """Jolt's settings with a known cost on a work-precision panel: error measured where the issue gives
-    it, else drawn at the level it is within (triangle: at most that)."""
+    """Jolt's settings with a known cost on a work-precision panel: error where it was measured,
+    else drawn at the level it is within (triangle: at most that)."""
     for (level, size), (it, ms) in sorted(JOLT_AT_LEVEL.items()):
         err = JOLT_LENGTH_ERROR[size].get(it)
         ax.scatter([ms], [err if err else level], marker="x" if err else "v", color="black", s=30)
@@ -485,7 +485,7 @@ def jolt_points(ax):
 
 
 def curtain_vs_jolt(out, rows, meta, lines):
-    """The solver issue's curtain tables re-measured, beside Jolt 5.5's figures: curtain_vs_jolt.csv,
+    """The curtain comparison re-measured, beside Jolt 5.5's figures: curtain_vs_jolt.csv,
     equal_error.csv, curtain_vs_jolt.png and a REPORT section."""
     rows = [r for r in rows if r["scene"] == "curtain" and r["ok"] == "1"]
     if not rows:
@@ -507,9 +507,9 @@ def curtain_vs_jolt(out, rows, meta, lines):
                 ms = [v[1] for k, v in JOLT_AT_LEVEL.items() if k[1] == size and v[0] == it]
                 w.writerow([size, "jolt", f"{it} iterations", err, "", ms[0] if ms else "", JOLT])
     lines.append("## Curtain: Drape against Jolt 5.5\n")
-    lines.append(f"The solver issue's comparison re-measured in this run (curtain of the rest scenes above; ms = CPU time "
+    lines.append(f"The curtain comparison with Jolt re-measured in this run (curtain of the rest scenes above; ms = CPU time "
                  f"of one thread per 60 Hz step, medians of interleaved rounds at rest) beside Jolt's figures "
-                 f"({JOLT}, from the issue; Jolt's ms only where the issue gives them). Each cell: hanging-length error / "
+                 f"({JOLT}; Jolt's ms only where they were measured). Each cell: hanging-length error / "
                  "worst vertex error over the largest displacement / ms. CSV: curtain_vs_jolt.csv, equal_error.csv; "
                  "plot: curtain_vs_jolt.png.\n")
     lines.append("| setting | " + " | ".join(f"{s}^2" for s in sizes) + " |")
@@ -536,7 +536,7 @@ def curtain_vs_jolt(out, rows, meta, lines):
     lines.append("")
     # Time at equal error: the cheapest measured Drape setting within each level, against Jolt's.
     lines.append("Time at equal error: the cheapest Drape setting measured here whose hanging-length error is within "
-                 "the level, against the cheapest Jolt setting within it (issue figures).\n")
+                 "the level, against the cheapest Jolt setting within it.\n")
     lines.append("| level | size | Jolt 5.5 | cheapest Drape | Drape / Jolt | cheapest per Drape model |")
     lines.append("|---|---|---|---|---|---|")
     with open(os.path.join(out, "equal_error.csv"), "w", newline="") as f:
