@@ -749,15 +749,13 @@ void GlesCloth::run_pass(Program& p, int x, int aux, int out, int out2, bool con
     if (out2 >= 0) refresh_texture(out2);
 }
 
-Result GlesCloth::shift_gpu_state(const glm::vec3& shift) {
-    Program* p = nullptr;
-    if (Result r = program(kShift, &p); !r.ok()) return r;
+void GlesCloth::shift_gpu_state(Program& p, const glm::vec3& shift) {
     const uint32_t n = topo_.particle_count;
     constexpr GLsizei kState = GLsizei(sizeof(Particle));
     int& cur = g_[0];
     int& spare = g_[2];
-    glUseProgram(p->id);
-    glUniform3fv(p->u[uShift], 1, &shift.x);
+    glUseProgram(p.id);
+    glUniform3fv(p.u[uShift], 1, &shift.x);
     glBindVertexArray(gl_.vao);
     for (int a = 0; a < kMaxAttribs; ++a) glDisableVertexAttribArray(GLuint(a));
     glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[cur]);
@@ -770,7 +768,6 @@ Result GlesCloth::shift_gpu_state(const glm::vec3& shift) {
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
     refresh_texture(spare);
     std::swap(cur, spare);
-    return {};
 }
 
 void GlesCloth::run_tether(Program& p, int x, int d, int out_x, int out_d) {
@@ -905,6 +902,8 @@ Result GlesCloth::gpu_step(float dt) {
     if (Result r = program(first, &p_first); !r.ok()) return r;
     if (has_tethers())  // else no tether program and no tether pass (CpuCloth::step's condition)
         if (Result r = program(kTether, &p_tether); !r.ok()) return r;
+    Program* p_shift = nullptr;  // compiled with the others: a first re-centre mid-game compiles nothing
+    if (Result r = program(kShift, &p_shift); !r.ok()) return r;
     // Interaction (CpuCloth::collide): colliders in every substep, drag in the first.
     // Variants: DRAPE_SHAPES = collider capacity (power of two >= 4, 0 without colliders).
     Program *p_interact_first = nullptr, *p_interact = nullptr;
@@ -1021,7 +1020,7 @@ Result GlesCloth::gpu_step(float dt) {
     const glm::vec3 shift = recentre_shift(kinematic_.empty() ? glm::vec3(x_[0])
                                                              : kinematic_target_[kinematic_[0]]);
     if (shift != glm::vec3(0.0f)) {
-        if (Result r = shift_gpu_state(shift); !r.ok()) return r;
+        shift_gpu_state(*p_shift, shift);
         shift_origin(shift);
         targets_dirty_ = true;
     }

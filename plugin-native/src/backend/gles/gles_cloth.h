@@ -126,7 +126,7 @@ private:
     /// `out2` >= 0 for the two-output passes: out gets v_x, out2 v_d). sub: u_substep.
     void run_pass(Program& p, int x, int aux, int out, int out2, bool constraint, const glm::vec4& sub);
     /// Cloth::shift_origin on the GPU positions: x - shift into the spare buffer, which becomes x.
-    Result shift_gpu_state(const glm::vec3& shift);
+    void shift_gpu_state(Program& p, const glm::vec3& shift);
     /// kernels::tether: reads state buffers x and d, writes them to out_x and out_d.
     void run_tether(Program& p, int x, int d, int out_x, int out_d);
     bool has_tethers() const { return params_.max_stretch > 0 && !kinematic_.empty(); }
