@@ -43,14 +43,8 @@ void CpuCloth::refresh_backend() {
 
 template <class KinematicAt>
 void CpuCloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& kinematic_at) {
-    // Target y into target_, inertia as the first iterate into spare2; then each iteration
-    // d += A^-1 r, r = kernels::implicit_residual, A = M/h^2 + sum_springs (k + kd/h) (e_i - e_j)
-    // (e_i - e_j)^T over the free particles: Projective Dynamics' constant matrix (Bouaziz et al.
-    // 2014), prefactored, as the preconditioner of the exact force residual. A bounds the spring
-    // Hessian (k n n^T + k (1 - L/l)(I - n n^T) <= k I), so every iteration lowers Phi; it solves
-    // the linear part (rigid motion, stretch of a hanging cloth) in one iteration, which local
-    // Jacobi-type sweeps need O(n) iterations for; and the fixed point is the exact equilibrium
-    // whatever A is (kernels::implicit_residual), so A is refactored only when it drifts far.
+    // Target y into target_, inertia as the first iterate into spare2; then the solve
+    // (implicit_solve.h) minimises Phi (kernels::implicit_residual) from there.
     Particle* cur = x_.data();
     Particle* disp = d_.data();
     Particle* target = target_.data();

@@ -164,9 +164,21 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
                          row_col_.begin());
     y_.resize(m);
     sep_sum_.resize(size_t(sep_count) * kParts);
-    for (std::vector<Particle>* v : {&r_, &z_}) v->assign(n, Particle(0.0f));
+    for (std::vector<Particle>* v : {&r_, &r_prev_, &z_, &p_, &q_}) v->assign(n, Particle(0.0f));
     h_ = h;
 }
+
+namespace {
+
+/// sum_i a_i . b_i over the xyz of n records, in double and in index order (the same bits for any
+/// thread count).
+double dot(const std::vector<kernels::Particle>& a, const std::vector<kernels::Particle>& b) {
+    double sum = 0;
+    for (size_t i = 0; i < a.size(); ++i) sum += double(glm::dot(glm::vec3(a[i]), glm::vec3(b[i])));
+    return sum;
+}
+
+}  // namespace
 
 void ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* start, const Particle* target,
                           Particle* iterate, uint32_t iterations, ThreadPool* pool) {
@@ -177,14 +189,52 @@ void ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* star
         else
             fn(0u, n);
     };
-    for (uint32_t it = 0; it < iterations; ++it) {
+    auto residual = [&] {
         each([&](uint32_t b, uint32_t e) {
             kernels::implicit_residual(c, iterate, target, start, r_.data(), b, e);
         });
+    };
+    // Polak-Ribiere (clamped at 0, which restarts on the preconditioned residual), step length by
+    // one Newton step along the direction: alpha = r.p / p.Hp (Shewchuk 1994, "An introduction to
+    // the conjugate gradient method without the agonizing pain", B5). Phi must not rise: by the
+    // trapezoid rule along the last step, Phi(new) - Phi(old) = -alpha/2 (r_old.p + r_new.p); if
+    // that is positive the step overshot, so it is halved and the directions restart.
+    double rz_prev = 0, rp_prev = 0;
+    float alpha = 0;
+    for (uint32_t it = 0; it < iterations; ++it) {
+        std::swap(r_, r_prev_);
+        residual();
+        bool restart = it == 0;
+        if (it > 0 && rp_prev + dot(r_, p_) < 0) {
+            const float back = -0.5f * alpha;
+            each([&](uint32_t begin, uint32_t end) {
+                for (uint32_t i = begin; i < end; ++i) iterate[i] += Particle(back * glm::vec3(p_[i]), 0.0f);
+            });
+            residual();
+            restart = true;
+        }
         precondition(r_.data(), z_.data(), pool);
-        each([&](uint32_t b, uint32_t e) {
-            for (uint32_t i = b; i < e; ++i) iterate[i] += Particle(glm::vec3(z_[i]), 0.0f);
+        const double rz = dot(r_, z_);
+        if (!(rz > 0)) break;  // r = 0: at the minimum
+        double beta = restart ? 0.0 : std::max(0.0, (rz - dot(z_, r_prev_)) / rz_prev);
+        double rp = rz;
+        if (beta > 0) {
+            rp = rz + beta * dot(r_, p_);
+            if (!(rp > 0)) beta = 0, rp = rz;  // not downhill: restart
+        }
+        const float b = float(beta);
+        each([&](uint32_t begin, uint32_t end) {
+            for (uint32_t i = begin; i < end; ++i) p_[i] = z_[i] + b * p_[i];
         });
+        each([&](uint32_t b, uint32_t e) {
+            kernels::implicit_hessian_product(c, iterate, start, p_.data(), q_.data(), b, e);
+        });
+        alpha = float(rp / dot(p_, q_));
+        each([&](uint32_t begin, uint32_t end) {
+            for (uint32_t i = begin; i < end; ++i) iterate[i] += Particle(alpha * glm::vec3(p_[i]), 0.0f);
+        });
+        rz_prev = rz;
+        rp_prev = rp;
     }
 }
 

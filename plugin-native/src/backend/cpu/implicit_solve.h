@@ -1,7 +1,14 @@
-// The IMPLICIT model's solve of one substep (CpuCloth::implicit_substep): iterations d += A^-1 r on
-// the force residual r (kernels::implicit_residual), with A = M/h^2 + sum_springs (k + kd/h)
+// The IMPLICIT model's solve of one substep (CpuCloth::implicit_substep): minimise Phi
+// (kernels::implicit_residual) by nonlinear preconditioned conjugate gradients on the force
+// residual r = -grad Phi. The preconditioner is A^-1, A = M/h^2 + sum_springs (k + kd/h)
 // (e_i - e_j)(e_i - e_j)^T over the free particles (kinematic ones enter only through the
-// residual), factored once by a sparse Cholesky.
+// residual; Projective Dynamics' constant matrix, Bouaziz et al. 2014), factored once by a sparse
+// Cholesky. A alone (d += A^-1 r) solves the linear part (rigid motion, the stretch of a hanging
+// cloth) in one iteration but charges a taut sheet's transverse sag the full k of each spring
+// where the true stiffness is k times the strain, so that mode crept (a 17^2 sheet at 1e5 N/m was
+// 7.9 % off after 10 s); conjugate directions with the step length from the spring Hessian
+// (kernels::implicit_hessian_product) take it in a few iterations. The fixed point is r = 0, the
+// exact equilibrium, whatever the preconditioner, so A is refactored only when it drifts far.
 //
 // The factor's rows are ordered by a one-level nested dissection: two parts that share no spring,
 // each in its own minimum-degree (AMD) order, then the separator between them. L is then block
@@ -36,9 +43,10 @@ class ImplicitSolve {
     /// Substep the factor was built for, s (0: none yet).
     float h() const { return h_; }
 
-    /// `iterations` times: r = kernels::implicit_residual(c, d, target, start), d += A^-1 r, with
-    /// d = iterate. pool: the threads to use, or null for the calling thread alone (same bits).
-    /// Does not allocate.
+    /// `iterations` conjugate-gradient iterations on the substep's displacements d = iterate (the
+    /// first iterate on entry, 0 on kinematic particles), from target and start (see
+    /// kernels::implicit_residual). pool: the threads to use, or null for the calling thread alone
+    /// (same bits). Does not allocate.
     void solve(const kernels::SubstepContext& c, const Particle* start, const Particle* target,
                Particle* iterate, uint32_t iterations, ThreadPool* pool);
 
@@ -66,7 +74,9 @@ class ImplicitSolve {
     std::vector<uint32_t> sep_split_;
     std::vector<glm::vec3> y_;        ///< scratch, one per factor row
     std::vector<glm::vec3> sep_sum_;  ///< per part and separator row: sum of L_sk y_k over the part's k
-    std::vector<Particle> r_, z_;     ///< residual and A^-1 times it, one per particle
+    // Conjugate gradients, one record per particle: residual, the previous one, preconditioned
+    // residual, direction and H times it.
+    std::vector<Particle> r_, r_prev_, z_, p_, q_;
 };
 
 }  // namespace drape

@@ -294,6 +294,40 @@ inline void implicit_residual(const SubstepContext& c, const Particle* disp, con
     }
 }
 
+/// IMPLICIT: q = H p, H the Hessian of Phi (implicit_residual) at disp with each spring's
+/// transverse stiffness clamped at 0, so that H is positive definite:
+///   H = M/h^2 + sum_springs (k + kd/h) n n^T + k max(0, 1 - L/l) (I - n n^T)  (per spring block,
+/// on p_i - p_j; the dashpot's change of direction is left out). p must be 0 on kinematic particles.
+inline void implicit_hessian_product(const SubstepContext& c, const Particle* disp, const Particle* start,
+                                     const Particle* p, Particle* q, uint32_t begin, uint32_t end) {
+    const float kd_h = c.damping / c.h;
+    const float inv_h2 = 1.0f / (c.h * c.h);
+    for (uint32_t i = begin; i < end; ++i) {
+        const float wi = disp[i].w;
+        glm::vec3 out(0.0f);
+        if (wi != 0.0f) {
+            const glm::vec3 pi(p[i]);
+            const glm::vec3 xi = glm::vec3(start[i]) + glm::vec3(disp[i]);
+            const uint32_t count = c.nbr_count[i];
+            for (uint32_t s = 0; s < count; ++s) {
+                const size_t slot = size_t(s) * c.stride + i;
+                const uint8_t g = c.col_group[slot];
+                if (g >= DRAPE_GROUP_COUNT || !c.groups.active[g]) continue;
+                const uint32_t j = c.col_index[slot];
+                float len;
+                const glm::vec3 n = direction(xi - (glm::vec3(start[j]) + glm::vec3(disp[j])), &len);
+                const glm::vec3 dp = pi - glm::vec3(p[j]);
+                const float k = c.groups.stiffness[g];
+                const float along = glm::dot(n, dp);
+                const float across = len > 0.0f ? k * std::max(0.0f, 1.0f - c.col_rest[slot] / len) : 0.0f;
+                out += ((k + kd_h) * along) * n + across * (dp - along * n);
+            }
+            out += pi * (inv_h2 / wi);
+        }
+        q[i] = Particle(out, wi);
+    }
+}
+
 /// Tethers (long-range attachments, Kim, Chentanez and Mueller 2012): particle i may be at most
 /// `length[i]` from the kinematic particle `anchor[i]`; beyond that it is pulled back onto the
 /// sphere, and its displacement takes the same correction (no velocity away from the anchor).
