@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <condition_variable>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <deque>
@@ -18,6 +19,10 @@
 #include <mutex>
 #include <string>
 #include <thread>
+
+/// GL ES calls libdrape made to entry point `name` (NULL: all) since it loaded them; exported by
+/// the library's GL loader for tests and the bench, not part of drape.h.
+extern "C" uint64_t drape_gl_call_count(const char* name);
 
 namespace drape_test {
 

@@ -2,12 +2,13 @@
 
 #include <dlfcn.h>
 
+#include <cstring>
 #include <mutex>
 #include <string>
 
 namespace drape::gles {
 
-#define DRAPE_GL_DEFINE(type, name) type name = nullptr;
+#define DRAPE_GL_DEFINE(type, name) GlEntry<type> name;
 DRAPE_GL_FUNCTIONS(DRAPE_GL_DEFINE)
 #undef DRAPE_GL_DEFINE
 
@@ -56,7 +57,7 @@ void load() {
         if (!p) missing += std::string(missing.empty() ? "" : ", ") + name;
         return p;
     };
-#define DRAPE_GL_RESOLVE(type, name) name = reinterpret_cast<type>(resolve(#name));
+#define DRAPE_GL_RESOLVE(type, name) name.fn = reinterpret_cast<type>(resolve(#name));
     DRAPE_GL_FUNCTIONS(DRAPE_GL_RESOLVE)
 #undef DRAPE_GL_RESOLVE
     if (!missing.empty()) {
@@ -79,3 +80,14 @@ const char* load_error() {
 }
 
 }  // namespace drape::gles
+
+uint64_t drape_gl_call_count(const char* name) {
+    using namespace drape::gles;
+    uint64_t total = 0;
+#define DRAPE_GL_COUNT(type, fn_name)                                      \
+    if (!name || std::strcmp(name, #fn_name) == 0) total += fn_name.calls.load(std::memory_order_relaxed);
+    DRAPE_GL_FUNCTIONS(DRAPE_GL_COUNT)
+#undef DRAPE_GL_COUNT
+    return total;
+}
+

@@ -2,8 +2,10 @@
 // system's GLES and EGL libraries + dlsym, eglGetProcAddress as fallback), so that libdrape and
 // the Unity source plug-in link against no GL library at build time.
 //
-// The pointers live in namespace drape::gles under the GL names, so the backend's unqualified
-// calls (glBindBuffer(...)) reach them and not the global prototypes. No prototypes are declared
+// The entry points live in namespace drape::gles under the GL names, so the backend's unqualified
+// calls (glBindBuffer(...)) reach them and not the global prototypes. Each one counts its calls
+// (one relaxed atomic add; drape_gl_call_count reads them for tests and the bench, which check
+// that a steady frame reads nothing back and uploads nothing). No prototypes are declared
 // (GL_GLES_PROTOTYPES 0, EGL_EGL_PROTOTYPES 0): a GL function missing from the lists below is a
 // compile error in the backend ("was not declared"); add it here, with its PFN type.
 //
@@ -21,6 +23,9 @@
 #endif
 #include <EGL/egl.h>
 #include <GLES3/gl3.h>
+
+#include <atomic>
+#include <cstdint>
 
 #define DRAPE_GL_FUNCTIONS(X) \
   X(PFNGLACTIVETEXTUREPROC, glActiveTexture) \
@@ -96,7 +101,20 @@
 
 namespace drape::gles {
 
-#define DRAPE_GL_DECLARE(type, name) extern type name;
+/// One GL ES entry point: the driver's function and how often it was called.
+template <typename Fn>
+struct GlEntry;
+template <typename R, typename... A>
+struct GlEntry<R(GL_APIENTRYP)(A...)> {
+    R(GL_APIENTRYP fn)(A...) = nullptr;
+    std::atomic<uint64_t> calls{0};
+    R operator()(A... a) {
+        calls.fetch_add(1, std::memory_order_relaxed);
+        return fn(a...);
+    }
+};
+
+#define DRAPE_GL_DECLARE(type, name) extern GlEntry<type> name;
 DRAPE_GL_FUNCTIONS(DRAPE_GL_DECLARE)
 #undef DRAPE_GL_DECLARE
 
@@ -108,3 +126,9 @@ EGLContext eglGetCurrentContext();
 const char* load_error();
 
 }  // namespace drape::gles
+
+/// Calls the library made to the GL ES entry point `name` (e.g. "glDrawArrays") since it loaded
+/// them, from every thread; name NULL: all entry points together; 0 for names it does not use. For
+/// tests and the bench (declared there, not in drape.h: a diagnostic, not part of the C ABI).
+extern "C" __attribute__((visibility("default"))) uint64_t drape_gl_call_count(const char* name);
+

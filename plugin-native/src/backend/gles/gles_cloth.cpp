@@ -27,21 +27,31 @@ constexpr uint32_t kMaxLambdaVec4 = 8;
 
 enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3, kTether = 4, kInteract = 5, kShift = 6 };  // kCommit: last iteration
 // Uniforms outside the DrapeSim block (sim_uniforms.h): per substep, per collider set, per shift.
-enum Uniform { uSubstep, uShapes, uShapeCount, uShift, kUniformCount };
-const char* const kUniformNames[kUniformCount] = {"u_substep", "u_shapes", "u_shape_count", "u_shift"};
+// u_x / u_aux: the texture units of the pass's input buffers (see kNbrUnit).
+enum Uniform { uSubstep, uShapes, uShapeCount, uShift, uX, uAux, kUniformCount };
+const char* const kUniformNames[kUniformCount] = {"u_substep", "u_shapes", "u_shape_count", "u_shift", "u_x", "u_aux"};
 // Attribute locations (bound before linking).
 enum Attrib {
     aX = 0, aAux = 1, aKStart = 2, aKTarget = 3, aLambda0 = 4, aTetherAnchor = 12, aTetherLength = 13, aDrag = 14,
     aParticle = 0, aKeep0 = 1
 };
 constexpr int kMaxAttribs = 16;
-// Texture units, fixed per sampler (set once when a program is linked); 5 is the scratch unit for
-// refreshes.
+// Texture units, bound once per step (begin_passes): particle texture b on unit b, so a pass picks
+// its inputs by pointing u_x / u_aux at a buffer's unit; then the tables, whose samplers are set
+// once when a program is linked. kSetupUnit: creating and uploading textures outside the passes.
+// Units 0 .. kSetupUnit are saved and restored for the caller.
+constexpr int kNbrUnit = 4, kInfoUnit = 5, kTrisUnit = 6, kSetupUnit = 7;
 constexpr struct {
     const char* name;
     GLint unit;
-} kSamplers[] = {{"u_x", 0}, {"u_aux", 1}, {"u_nbr", 2}, {"u_info", 3}, {"u_tris", 4}};
-constexpr int kRefreshUnit = 5;
+} kSamplers[] = {{"u_nbr", kNbrUnit}, {"u_info", kInfoUnit}, {"u_tris", kTrisUnit}};
+// Inputs of a pass beyond x and aux (GlesCloth::vertex_array); bits above the two buffer indices.
+enum PassInputs : uint32_t {
+    kIterateRecords = 1u << 4,   // x holds displacement-iterate records (+ XPBD lambdas)
+    kKinematicInputs = 1u << 5,  // a_kstart, a_ktarget
+    kTetherInputs = 1u << 6,     // a_tether_anchor, a_tether_length
+    kDragInput = 1u << 7,        // a_drag
+};
 
 std::atomic<bool> g_render_device{false};
 
@@ -71,9 +81,10 @@ void delete_now(GlObjects& o) {
     glDeleteTextures(4, o.textures);
     GLuint tex[3] = {o.nbr_tex, o.info_tex, o.tri_tex};
     glDeleteTextures(3, tex);
-    GLuint bufs[7] = {o.kstart, o.targets, o.vertex_to_particle, o.scratch, o.tethers, o.drag, o.uniforms};
-    glDeleteBuffers(7, bufs);
-    if (o.vao) glDeleteVertexArrays(1, &o.vao);
+    GLuint bufs[8] = {o.kstart, o.targets, o.vertex_to_particle, o.scratch, o.tethers, o.drag, o.uniforms, o.staging};
+    glDeleteBuffers(8, bufs);
+    o.vaos.push_back(o.out_vao);
+    glDeleteVertexArrays(GLsizei(o.vaos.size()), o.vaos.data());
     if (o.fbo) glDeleteFramebuffers(1, &o.fbo);
     if (o.rbo) glDeleteRenderbuffers(1, &o.rbo);
     for (GLuint p : o.programs) glDeleteProgram(p);
@@ -113,7 +124,7 @@ Result gl_error(const char* where) {
 struct StateGuard {
     GLint program, vao, array_buffer, unpack, copy_read, copy_write, tf_buffer, draw_fbo, active_tex;
     GLint uniform_buffer, block_buffer, block_start, block_size;  // generic and DrapeSim's indexed binding
-    GLint tex[6];
+    GLint tex[kSetupUnit + 1];
     GLboolean discard;
     StateGuard() {
         glGetIntegerv(GL_CURRENT_PROGRAM, &program);
@@ -129,14 +140,14 @@ struct StateGuard {
         glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, kSimUniformsBinding, &block_buffer);
         glGetIntegeri_v(GL_UNIFORM_BUFFER_START, kSimUniformsBinding, &block_start);
         glGetIntegeri_v(GL_UNIFORM_BUFFER_SIZE, kSimUniformsBinding, &block_size);
-        for (int u = 0; u < 6; ++u) {
+        for (int u = 0; u <= kSetupUnit; ++u) {
             glActiveTexture(GL_TEXTURE0 + GLenum(u));
             glGetIntegerv(GL_TEXTURE_BINDING_2D, &tex[u]);
         }
         discard = glIsEnabled(GL_RASTERIZER_DISCARD);
     }
     ~StateGuard() {
-        for (int u = 0; u < 6; ++u) {
+        for (int u = 0; u <= kSetupUnit; ++u) {
             glActiveTexture(GL_TEXTURE0 + GLenum(u));
             glBindTexture(GL_TEXTURE_2D, GLuint(tex[u]));
         }
@@ -250,7 +261,7 @@ uint32_t rows_for(uint64_t texels) { return uint32_t(std::max<uint64_t>(1, (texe
 GLuint make_texture(GLenum internal, uint32_t rows) {
     GLuint t = 0;
     glGenTextures(1, &t);
-    glActiveTexture(GL_TEXTURE0 + kRefreshUnit);
+    glActiveTexture(GL_TEXTURE0 + kSetupUnit);
     glBindTexture(GL_TEXTURE_2D, t);
     glTexStorage2D(GL_TEXTURE_2D, 1, internal, kTexWidth, GLsizei(rows));
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -258,18 +269,24 @@ GLuint make_texture(GLenum internal, uint32_t rows) {
     return t;
 }
 
-void upload_uint_texture(GLuint t, uint32_t rows, std::vector<uint32_t>& texels) {
+/// Uploads RGBA32UI texels (padded to whole rows here) through the pixel-unpack buffer `staging`:
+/// client memory enters GL only through glBufferData / glBufferSubData, which is how the GL call
+/// budget test tells uploads from the GPU-side texture refreshes (glTexSubImage2D from a buffer).
+void upload_uint_texture(GLuint t, GLuint staging, uint32_t rows, std::vector<uint32_t>& texels) {
     texels.resize(size_t(kTexWidth) * rows * 4, 0u);
-    glActiveTexture(GL_TEXTURE0 + kRefreshUnit);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, staging);
+    glBufferData(GL_PIXEL_UNPACK_BUFFER, GLsizeiptr(texels.size() * 4), texels.data(), GL_STREAM_DRAW);
+    glActiveTexture(GL_TEXTURE0 + kSetupUnit);
     glBindTexture(GL_TEXTURE_2D, t);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTexWidth, GLsizei(rows), GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTexWidth, GLsizei(rows), GL_RGBA_INTEGER, GL_UNSIGNED_INT, nullptr);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
 }
 
 }  // namespace
 
 bool GlObjects::empty() const {
-    return !buffers[0] && !textures[0] && !nbr_tex && !vao && programs.empty();
+    return !buffers[0] && !textures[0] && !nbr_tex && !staging && programs.empty();
 }
 
 bool context_current(std::string* why) {
@@ -373,9 +390,10 @@ Result GlesCloth::ensure_gl() {
     if (rows_for(biggest) > uint32_t(max_size))
         return {DRAPE_ERROR_INVALID_ARGUMENT, "cloth too large for GLES textures (" + std::to_string(biggest) +
                                                   " texels, limit " + std::to_string(uint64_t(max_size) * kTexWidth) + ")"};
+    glGetIntegerv(GL_MAX_VERTEX_UNIFORM_VECTORS, &max_vertex_uniform_vectors_);
     drain_gl_errors();
     gl_.context = eglGetCurrentContext();
-    glGenVertexArrays(1, &gl_.vao);
+    glGenBuffers(1, &gl_.staging);
     glGenBuffers(1, &gl_.targets);
     glGenBuffers(1, &gl_.vertex_to_particle);
     glGenBuffers(1, &gl_.kstart);
@@ -386,7 +404,9 @@ Result GlesCloth::ensure_gl() {
     glBufferData(GL_UNIFORM_BUFFER, sizeof(SimUniforms), nullptr, GL_DYNAMIC_DRAW);
     glBindBuffer(GL_UNIFORM_BUFFER, 0);
     uniforms_uploaded_ = false;
+    info_uploaded_.clear();
     tethers_uploaded_.clear();
+    targets_uploaded_.clear();
     // Static tables.
     const NeighbourTable& nb = topo_.nbr;
     const uint32_t nbr_rows = rows_for(uint64_t(n) * nb.slots);
@@ -399,7 +419,7 @@ Result GlesCloth::ensure_gl() {
         texels[4 * s + 1] = rest_bits;
         texels[4 * s + 2] = nb.group[s];
     }
-    upload_uint_texture(gl_.nbr_tex, nbr_rows, texels);
+    upload_uint_texture(gl_.nbr_tex, gl_.staging, nbr_rows, texels);
     const uint32_t tri_rows = rows_for(uint64_t(n) * tri_slots_);
     gl_.tri_tex = make_texture(GL_RGBA32UI, tri_rows);
     texels.assign(size_t(n) * tri_slots_ * 4, 0u);
@@ -413,7 +433,7 @@ Result GlesCloth::ensure_gl() {
             t[1] = tri[k + 1];
             t[2] = tri[k + 2];
         }
-    upload_uint_texture(gl_.tri_tex, tri_rows, texels);
+    upload_uint_texture(gl_.tri_tex, gl_.staging, tri_rows, texels);
     gl_.info_tex = make_texture(GL_RGBA32UI, rows_for(n));
     glBindBuffer(GL_ARRAY_BUFFER, gl_.vertex_to_particle);
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(topo_.vertex_to_particle.size() * 4), topo_.vertex_to_particle.data(),
@@ -431,6 +451,7 @@ Result GlesCloth::sync_gpu() {
     if (want != record_) {
         if (gpu_newer_ && record_ != 0)
             if (Result r = pull(); !r.ok()) return r;
+        drop_pass_objects();  // they name the old buffers, with the old record stride
         glDeleteBuffers(4, gl_.buffers);
         glDeleteTextures(4, gl_.textures);
         record_ = want;
@@ -449,23 +470,30 @@ Result GlesCloth::sync_gpu() {
         state_dirty_ = true;
     }
     if (state_dirty_) push_state();
+    // An edit marks targets and tables dirty; each is uploaded only if it really changed (Unity
+    // pushes colliders every frame, which changes none of them).
     if (targets_dirty_) {
-        glBindBuffer(GL_ARRAY_BUFFER, gl_.targets);
-        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n * sizeof(glm::vec3)), kinematic_target_.data(), GL_DYNAMIC_DRAW);
-        glBindBuffer(GL_ARRAY_BUFFER, 0);
+        if (kinematic_target_ != targets_uploaded_) {
+            glBindBuffer(GL_ARRAY_BUFFER, gl_.targets);
+            glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n * sizeof(glm::vec3)), kinematic_target_.data(), GL_DYNAMIC_DRAW);
+            glBindBuffer(GL_ARRAY_BUFFER, 0);
+            targets_uploaded_ = kinematic_target_;
+        }
         targets_dirty_ = false;
     }
     if (info_dirty_) {
-        std::vector<uint32_t> texels(size_t(n) * 4, 0u);
-        std::vector<uint32_t> incident(n, 0);
-        for (uint32_t p : topo_.triangles) ++incident[p];
+        std::vector<uint32_t>& texels = table_scratch_;  // kept: no allocation after the first edit
+        texels.assign(size_t(n) * 4, 0u);
         for (uint32_t i = 0; i < n; ++i) {
             texels[4 * i] = topo_.nbr.count[i];
             texels[4 * i + 1] = active_count_[i];
-            texels[4 * i + 2] = incident[i];
         }
-        upload_uint_texture(gl_.info_tex, rows_for(n), texels);
-        // Tethers change only with the set of kinematic particles or max_stretch: upload then.
+        for (uint32_t p : topo_.triangles) ++texels[4 * p + 2];  // incident triangles
+        if (texels != info_uploaded_) {
+            info_uploaded_ = texels;
+            upload_uint_texture(gl_.info_tex, gl_.staging, rows_for(n), texels);
+        }
+        // Tethers change only with the set of kinematic particles or max_stretch.
         texels.resize(size_t(n) * 2);
         for (uint32_t i = 0; i < n; ++i) {
             texels[2 * i] = tether_anchor_[i];
@@ -489,20 +517,138 @@ void GlesCloth::push_state() {
     for (int k = 0; k < 2; ++k) {
         glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[g_[k]]);
         glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(n) * sizeof(Particle)), sources[k]);
-        refresh_texture(g_[k]);
+        tex_stale_[g_[k]] = true;
     }
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     state_dirty_ = false;
     gpu_newer_ = false;
 }
 
-void GlesCloth::refresh_texture(int b) {
+void GlesCloth::refresh(int b) {
+    if (!tex_stale_[b]) return;
+    if (active_unit_ != b) {
+        glActiveTexture(GL_TEXTURE0 + GLenum(b));  // texture b lives on unit b (begin_passes)
+        active_unit_ = b;
+    }
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, gl_.buffers[b]);
-    glActiveTexture(GL_TEXTURE0 + kRefreshUnit);
-    glBindTexture(GL_TEXTURE_2D, gl_.textures[b]);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    unpack_bound_ = true;
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTexWidth, GLsizei(tex_rows_), GL_RGBA, GL_FLOAT, nullptr);
-    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    tex_stale_[b] = false;
+}
+
+void GlesCloth::begin_passes() {
+    bind_framebuffer();
+    glEnable(GL_RASTERIZER_DISCARD);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    const GLuint units[kTrisUnit + 1] = {gl_.textures[0], gl_.textures[1], gl_.textures[2], gl_.textures[3],
+                                         gl_.nbr_tex,     gl_.info_tex,    gl_.tri_tex};
+    for (int u = 0; u <= kTrisUnit; ++u) {
+        glActiveTexture(GL_TEXTURE0 + GLenum(u));
+        glBindTexture(GL_TEXTURE_2D, units[u]);
+    }
+    active_unit_ = kTrisUnit;
+    used_program_ = 0;
+    unpack_bound_ = false;
+}
+
+void GlesCloth::use_program(Program& p, int x, int aux) {
+    if (used_program_ != p.id) {
+        glUseProgram(p.id);
+        used_program_ = p.id;
+    }
+    if (x >= 0 && p.unit_x != x) {
+        glUniform1i(p.u[uX], x);
+        p.unit_x = x;
+    }
+    if (aux >= 0 && p.unit_aux != aux) {
+        glUniform1i(p.u[uAux], aux);
+        p.unit_aux = aux;
+    }
+}
+
+GLuint GlesCloth::vertex_array(int x, int aux, uint32_t inputs) {
+    const uint32_t key = uint32_t(x) | uint32_t(aux) << 2 | inputs;
+    if (auto it = vaos_.find(key); it != vaos_.end()) return it->second;
+    constexpr GLsizei kState = GLsizei(sizeof(Particle));  // x, d, substep start, kstart
+    const GLsizei stride = inputs & kIterateRecords ? GLsizei(record_ * sizeof(Particle)) : kState;
+    GLuint vao = 0;
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[x]);
+    glEnableVertexAttribArray(aX);
+    glVertexAttribPointer(aX, 4, GL_FLOAT, GL_FALSE, stride, nullptr);
+    if (inputs & kIterateRecords)
+        for (uint32_t k = 0; k + 1 < record_; ++k) {
+            glEnableVertexAttribArray(aLambda0 + k);
+            glVertexAttribPointer(aLambda0 + k, 4, GL_FLOAT, GL_FALSE, stride,
+                                  reinterpret_cast<const void*>(size_t(16) * (k + 1)));
+        }
+    glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[aux]);
+    glEnableVertexAttribArray(aAux);
+    glVertexAttribPointer(aAux, 4, GL_FLOAT, GL_FALSE, kState, nullptr);
+    if (inputs & kKinematicInputs) {
+        glBindBuffer(GL_ARRAY_BUFFER, gl_.kstart);
+        glEnableVertexAttribArray(aKStart);
+        glVertexAttribPointer(aKStart, 3, GL_FLOAT, GL_FALSE, kState, nullptr);
+        glBindBuffer(GL_ARRAY_BUFFER, gl_.targets);
+        glEnableVertexAttribArray(aKTarget);
+        glVertexAttribPointer(aKTarget, 3, GL_FLOAT, GL_FALSE, 12, nullptr);
+    }
+    if (inputs & kTetherInputs) {
+        glBindBuffer(GL_ARRAY_BUFFER, gl_.tethers);
+        glEnableVertexAttribArray(aTetherAnchor);
+        glVertexAttribIPointer(aTetherAnchor, 1, GL_UNSIGNED_INT, 8, nullptr);
+        glEnableVertexAttribArray(aTetherLength);
+        glVertexAttribPointer(aTetherLength, 1, GL_FLOAT, GL_FALSE, 8, reinterpret_cast<const void*>(size_t(4)));
+    }
+    if (inputs & kDragInput) {
+        glBindBuffer(GL_ARRAY_BUFFER, gl_.drag);
+        glEnableVertexAttribArray(aDrag);
+        glVertexAttribPointer(aDrag, 3, GL_FLOAT, GL_FALSE, 12, nullptr);
+    }
+    gl_.vaos.push_back(vao);
+    vaos_.emplace(key, vao);
+    return vao;
+}
+
+void GlesCloth::feedback_draw(GLuint vao, uint32_t count) {
+    if (unpack_bound_) {
+        // A buffer must not be bound elsewhere while transform feedback writes it (ES 3.0 2.15.2).
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+        unpack_bound_ = false;
+    }
+    glBindVertexArray(vao);
+    glBeginTransformFeedback(GL_POINTS);
+    glDrawArrays(GL_POINTS, 0, GLsizei(count));
+    glEndTransformFeedback();
+}
+
+void GlesCloth::draw(GLuint vao, int out, int out2) {
+    // Outputs bound on the default transform feedback for this pass only (transform-feedback
+    // objects made once per output pair were measured wrong on softpipe: 1.3e-3 m off after one
+    // step), and unbound after it, before later passes read them.
+    const size_t n = topo_.particle_count;
+    if (out2 >= 0) {
+        // Separate attribs: v_x -> binding 0, v_d -> binding 1, one state record each.
+        glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[out], 0, GLsizeiptr(n * sizeof(Particle)));
+        glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 1, gl_.buffers[out2], 0, GLsizeiptr(n * sizeof(Particle)));
+    } else {
+        // Interleaved: one displacement-iterate record per particle.
+        glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[out], 0,
+                          GLsizeiptr(n * record_ * sizeof(Particle)));
+    }
+    feedback_draw(vao, uint32_t(n));
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    if (out2 >= 0) glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, 0);
+    tex_stale_[out] = true;
+    if (out2 >= 0) tex_stale_[out2] = true;
+}
+
+void GlesCloth::drop_pass_objects() {
+    glDeleteVertexArrays(GLsizei(gl_.vaos.size()), gl_.vaos.data());
+    gl_.vaos.clear();
+    vaos_.clear();
+    for (bool& stale : tex_stale_) stale = true;
 }
 
 Result GlesCloth::pull() {
@@ -558,6 +704,8 @@ void GlesCloth::compute_cpu_stats() {
     stats_.rms_strain = count ? float(std::sqrt(sum_sq / count)) : 0.0f;
 }
 
+bool GlesCloth::predict_has_dashpot() const { return params_.model == DRAPE_MODEL_PBD && params_.damping > 0; }
+
 const std::string& GlesCloth::variant_defines(int pass) const {
     // Built in a kept buffer (appends within its capacity): looking a program up each pass of
     // each step allocates nothing after the first frame.
@@ -580,7 +728,7 @@ const std::string& GlesCloth::variant_defines(int pass) const {
         if (drag_variant_) d += "#define DRAPE_DRAG 1\n";
         define("DRAPE_SHAPES", long(shape_capacity_));
     }
-    if (pass == kPredict && params_.model == DRAPE_MODEL_PBD && params_.damping > 0) d += "#define DRAPE_DASHPOT 1\n";
+    if (pass == kPredict && predict_has_dashpot()) d += "#define DRAPE_DASHPOT 1\n";
     if (xpbd) d += "#define DRAPE_XPBD 1\n";
     if (pass < kConstraint && !kinematic_.empty()) d += "#define DRAPE_KINEMATIC 1\n";
     define("DRAPE_SLOTS", long(topo_.nbr.slots));
@@ -617,6 +765,7 @@ Result GlesCloth::program(int pass, Program** out) {
             !r.ok())
             return r;
         for (int u = 0; u < kUniformCount; ++u) p.u[u] = glGetUniformLocation(p.id, kUniformNames[u]);
+        used_program_ = 0;  // link() made it current
         gl_.programs.push_back(p.id);
         it = programs_.emplace(defines, p).first;
     }
@@ -664,6 +813,7 @@ Result GlesCloth::output_program(Program** out) {
             !r.ok())
             return r;
         for (int u = 0; u < kUniformCount; ++u) p.u[u] = glGetUniformLocation(p.id, kUniformNames[u]);
+        used_program_ = 0;  // link() made it current
         gl_.programs.push_back(p.id);
         it = programs_.emplace(key, p).first;
     }
@@ -699,105 +849,30 @@ void GlesCloth::use_uniforms(float h) {
 }
 
 void GlesCloth::run_pass(Program& p, int x, int aux, int out, int out2, bool constraint, const glm::vec4& sub) {
-    const uint32_t n = topo_.particle_count;
-    constexpr GLsizei kState = GLsizei(sizeof(Particle));             // x, d, substep start, kstart
-    const GLsizei iterate = GLsizei(record_ * sizeof(Particle));      // displacement iterates
-    const GLsizei stride = constraint ? iterate : kState;              // a_x's buffer
-    glUseProgram(p.id);
+    // Passes that fetch neighbours read x and aux as textures too (predict only with dashpots).
+    if (constraint || params_.model == DRAPE_MODEL_MASS_SPRING || predict_has_dashpot()) {
+        refresh(x);
+        refresh(aux);
+    }
+    use_program(p, x, aux);
     glUniform4fv(p.u[uSubstep], 1, &sub.x);
-
-    glBindVertexArray(gl_.vao);
-    for (int a = 0; a < kMaxAttribs; ++a) glDisableVertexAttribArray(GLuint(a));
-    glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[x]);
-    glEnableVertexAttribArray(aX);
-    glVertexAttribPointer(aX, 4, GL_FLOAT, GL_FALSE, stride, nullptr);
-    if (constraint && record_ > 1)
-        for (uint32_t k = 0; k + 1 < record_; ++k) {
-            glEnableVertexAttribArray(aLambda0 + k);
-            glVertexAttribPointer(aLambda0 + k, 4, GL_FLOAT, GL_FALSE, stride,
-                                  reinterpret_cast<const void*>(size_t(16) * (k + 1)));
-        }
-    glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[aux]);
-    glEnableVertexAttribArray(aAux);
-    glVertexAttribPointer(aAux, 4, GL_FLOAT, GL_FALSE, kState, nullptr);
-    if (!constraint && !kinematic_.empty()) {
-        glBindBuffer(GL_ARRAY_BUFFER, gl_.kstart);
-        glEnableVertexAttribArray(aKStart);
-        glVertexAttribPointer(aKStart, 3, GL_FLOAT, GL_FALSE, kState, nullptr);
-        glBindBuffer(GL_ARRAY_BUFFER, gl_.targets);
-        glEnableVertexAttribArray(aKTarget);
-        glVertexAttribPointer(aKTarget, 3, GL_FLOAT, GL_FALSE, 12, nullptr);
-    }
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, gl_.textures[x]);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, gl_.textures[aux]);
-    if (out2 >= 0) {
-        // Separate attribs: v_x -> binding 0, v_d -> binding 1, one state record each.
-        glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[out], 0, GLsizeiptr(size_t(n) * kState));
-        glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 1, gl_.buffers[out2], 0, GLsizeiptr(size_t(n) * kState));
-    } else {
-        // Interleaved: one displacement-iterate record per particle.
-        glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[out], 0, GLsizeiptr(size_t(n) * iterate));
-    }
-    glBeginTransformFeedback(GL_POINTS);
-    glDrawArrays(GL_POINTS, 0, GLsizei(n));
-    glEndTransformFeedback();
-    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
-    if (out2 >= 0) glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, 0);
-    refresh_texture(out);
-    if (out2 >= 0) refresh_texture(out2);
+    const uint32_t inputs = constraint ? kIterateRecords : kinematic_.empty() ? 0u : kKinematicInputs;
+    draw(vertex_array(x, aux, inputs), out, out2);
 }
 
 void GlesCloth::shift_gpu_state(Program& p, const glm::vec3& shift) {
-    const uint32_t n = topo_.particle_count;
-    constexpr GLsizei kState = GLsizei(sizeof(Particle));
     int& cur = g_[0];
     int& spare = g_[2];
-    glUseProgram(p.id);
+    use_program(p, -1, -1);
     glUniform3fv(p.u[uShift], 1, &shift.x);
-    glBindVertexArray(gl_.vao);
-    for (int a = 0; a < kMaxAttribs; ++a) glDisableVertexAttribArray(GLuint(a));
-    glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[cur]);
-    glEnableVertexAttribArray(aX);
-    glVertexAttribPointer(aX, 4, GL_FLOAT, GL_FALSE, kState, nullptr);
-    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[spare], 0, GLsizeiptr(size_t(n) * kState));
-    glBeginTransformFeedback(GL_POINTS);
-    glDrawArrays(GL_POINTS, 0, GLsizei(n));
-    glEndTransformFeedback();
-    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
-    refresh_texture(spare);
+    draw(vertex_array(cur, cur, 0), spare, -1);  // reads a_x only
     std::swap(cur, spare);
 }
 
 void GlesCloth::run_tether(Program& p, int x, int d, int out_x, int out_d) {
-    const uint32_t n = topo_.particle_count;
-    constexpr GLsizei kState = GLsizei(sizeof(Particle));
-    glUseProgram(p.id);
-    glBindVertexArray(gl_.vao);
-    for (int a = 0; a < kMaxAttribs; ++a) glDisableVertexAttribArray(GLuint(a));
-    glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[x]);
-    glEnableVertexAttribArray(aX);
-    glVertexAttribPointer(aX, 4, GL_FLOAT, GL_FALSE, kState, nullptr);
-    glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[d]);
-    glEnableVertexAttribArray(aAux);
-    glVertexAttribPointer(aAux, 4, GL_FLOAT, GL_FALSE, kState, nullptr);
-    glBindBuffer(GL_ARRAY_BUFFER, gl_.tethers);
-    glEnableVertexAttribArray(aTetherAnchor);
-    glVertexAttribIPointer(aTetherAnchor, 1, GL_UNSIGNED_INT, 8, nullptr);
-    glEnableVertexAttribArray(aTetherLength);
-    glVertexAttribPointer(aTetherLength, 1, GL_FLOAT, GL_FALSE, 8, reinterpret_cast<const void*>(size_t(4)));
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, gl_.textures[x]);
-    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[out_x], 0, GLsizeiptr(size_t(n) * kState));
-    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 1, gl_.buffers[out_d], 0, GLsizeiptr(size_t(n) * kState));
-    glBeginTransformFeedback(GL_POINTS);
-    glDrawArrays(GL_POINTS, 0, GLsizei(n));
-    glEndTransformFeedback();
-    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
-    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, 0);
-    refresh_texture(out_x);
-    refresh_texture(out_d);
+    refresh(x);  // anchors' positions
+    use_program(p, x, -1);
+    draw(vertex_array(x, d, kTetherInputs), out_x, out_d);
 }
 
 namespace {
@@ -828,35 +903,12 @@ uint32_t GlesCloth::build_shapes(uint32_t sub, uint32_t substeps) {
 }
 
 void GlesCloth::run_interact(Program& p, int x, int d, int out_x, int out_d, bool drag, uint32_t shapes) {
-    const uint32_t n = topo_.particle_count;
-    constexpr GLsizei kState = GLsizei(sizeof(Particle));
-    glUseProgram(p.id);
+    use_program(p, -1, -1);  // own records only: no texture
     if (shapes) {
         glUniform4fv(p.u[uShapes], GLsizei(shapes * 5), shape_data_.data());
         glUniform1i(p.u[uShapeCount], GLint(shapes));
     }
-    glBindVertexArray(gl_.vao);
-    for (int a = 0; a < kMaxAttribs; ++a) glDisableVertexAttribArray(GLuint(a));
-    glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[x]);
-    glEnableVertexAttribArray(aX);
-    glVertexAttribPointer(aX, 4, GL_FLOAT, GL_FALSE, kState, nullptr);
-    glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[d]);
-    glEnableVertexAttribArray(aAux);
-    glVertexAttribPointer(aAux, 4, GL_FLOAT, GL_FALSE, kState, nullptr);
-    if (drag) {
-        glBindBuffer(GL_ARRAY_BUFFER, gl_.drag);
-        glEnableVertexAttribArray(aDrag);
-        glVertexAttribPointer(aDrag, 3, GL_FLOAT, GL_FALSE, 12, nullptr);
-    }
-    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[out_x], 0, GLsizeiptr(size_t(n) * kState));
-    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 1, gl_.buffers[out_d], 0, GLsizeiptr(size_t(n) * kState));
-    glBeginTransformFeedback(GL_POINTS);
-    glDrawArrays(GL_POINTS, 0, GLsizei(n));
-    glEndTransformFeedback();
-    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
-    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, 0);
-    refresh_texture(out_x);
-    refresh_texture(out_d);
+    draw(vertex_array(x, d, drag ? kDragInput : 0u), out_x, out_d);
 }
 
 Result GlesCloth::step(float dt) {
@@ -913,12 +965,10 @@ Result GlesCloth::gpu_step(float dt) {
     if (shape_count) {
         capacity = 4;
         while (capacity < shape_count) capacity *= 2;
-        GLint max_vectors = 0;
-        glGetIntegerv(GL_MAX_VERTEX_UNIFORM_VECTORS, &max_vectors);
-        if (GLint(capacity * 5) + 64 > max_vectors)  // 64: the simulation's own uniforms, generously
-            return {DRAPE_ERROR_INVALID_ARGUMENT,
-                    std::to_string(shape_count) + " colliders need " + std::to_string(capacity * 5) +
-                        " uniform vectors; this GL offers " + std::to_string(max_vectors) + " to vertex shaders"};
+        if (GLint(capacity * 5) + 64 > max_vertex_uniform_vectors_)  // 64: the simulation's own uniforms, generously
+            return {DRAPE_ERROR_INVALID_ARGUMENT, std::to_string(shape_count) + " colliders need " +
+                                                      std::to_string(capacity * 5) + " uniform vectors; this GL offers " +
+                                                      std::to_string(max_vertex_uniform_vectors_) + " to vertex shaders"};
     }
     if (shape_count || dragging) {
         shape_capacity_ = capacity;
@@ -936,13 +986,7 @@ Result GlesCloth::gpu_step(float dt) {
         if (Result r = program(kCommit, &p_commit); !r.ok()) return r;
     }
 
-    bind_framebuffer();
-    glEnable(GL_RASTERIZER_DISCARD);
-    glActiveTexture(GL_TEXTURE2);
-    glBindTexture(GL_TEXTURE_2D, gl_.nbr_tex);
-    glActiveTexture(GL_TEXTURE3);
-    glBindTexture(GL_TEXTURE_2D, gl_.info_tex);
-
+    begin_passes();
     const uint32_t substeps = substeps_for(dt);
     const float h = dt / float(substeps);
     const uint32_t n = topo_.particle_count;
@@ -1051,7 +1095,6 @@ void GlesCloth::bind_framebuffer() {
 
 Result GlesCloth::write_output() {
     if (!out_buffer_) return {};
-    bind_framebuffer();
     Program* p = nullptr;
     if (Result r = output_program(&p); !r.ok()) return r;
     const uint32_t count = topo_.vertex_count;
@@ -1062,34 +1105,29 @@ Result GlesCloth::write_output() {
         glBindBuffer(GL_COPY_WRITE_BUFFER, gl_.scratch);
         glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, bytes);
     }
-    glEnable(GL_RASTERIZER_DISCARD);
-    use_uniforms(uniforms_.h);
-    glUseProgram(p->id);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, gl_.textures[g_[0]]);
-    glActiveTexture(GL_TEXTURE3);
-    glBindTexture(GL_TEXTURE_2D, gl_.info_tex);
-    glActiveTexture(GL_TEXTURE4);
-    glBindTexture(GL_TEXTURE_2D, gl_.tri_tex);
-    glBindVertexArray(gl_.vao);
-    for (int a = 0; a < kMaxAttribs; ++a) glDisableVertexAttribArray(GLuint(a));
-    glBindBuffer(GL_ARRAY_BUFFER, gl_.vertex_to_particle);
-    glEnableVertexAttribArray(aParticle);
-    glVertexAttribIPointer(aParticle, 1, GL_UNSIGNED_INT, 4, nullptr);
-    if (!keeps_.empty()) {
-        glBindBuffer(GL_ARRAY_BUFFER, gl_.scratch);
-        for (size_t k = 0; k < keeps_.size(); ++k) {
-            glEnableVertexAttribArray(GLuint(aKeep0 + k));
-            glVertexAttribIPointer(GLuint(aKeep0 + k), keeps_[k].second, GL_UNSIGNED_INT, GLsizei(out_layout_.stride),
-                                   reinterpret_cast<const void*>(size_t(keeps_[k].first) * 4));
+    if (!gl_.out_vao) {
+        // Made once per output buffer and layout (set_output drops it).
+        glGenVertexArrays(1, &gl_.out_vao);
+        glBindVertexArray(gl_.out_vao);
+        glBindBuffer(GL_ARRAY_BUFFER, gl_.vertex_to_particle);
+        glEnableVertexAttribArray(aParticle);
+        glVertexAttribIPointer(aParticle, 1, GL_UNSIGNED_INT, 4, nullptr);
+        if (!keeps_.empty()) {
+            glBindBuffer(GL_ARRAY_BUFFER, gl_.scratch);
+            for (size_t k = 0; k < keeps_.size(); ++k) {
+                glEnableVertexAttribArray(GLuint(aKeep0 + k));
+                glVertexAttribIPointer(GLuint(aKeep0 + k), keeps_[k].second, GL_UNSIGNED_INT,
+                                       GLsizei(out_layout_.stride),
+                                       reinterpret_cast<const void*>(size_t(keeps_[k].first) * 4));
+            }
         }
     }
+    refresh(g_[0]);
+    use_uniforms(uniforms_.h);
+    use_program(*p, g_[0], -1);
     glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, out_buffer_, 0, bytes);
-    glBeginTransformFeedback(GL_POINTS);
-    glDrawArrays(GL_POINTS, 0, GLsizei(count));
-    glEndTransformFeedback();
+    feedback_draw(gl_.out_vao, count);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
-    for (int a = 0; a < kMaxAttribs; ++a) glDisableVertexAttribArray(GLuint(a));
     return gl_error("writing the output buffer");
 }
 
@@ -1139,9 +1177,12 @@ Result GlesCloth::set_output(uint32_t buffer, const drape_vertex_layout& layout)
         out_buffer_ = buffer;
         out_layout_ = layout;
         keeps_ = keeps;
+        glDeleteVertexArrays(1, &gl_.out_vao);  // made again for this buffer and layout
+        gl_.out_vao = 0;
         if (!buffer) return {};
         StateGuard guard;
         if (Result r = sync_gpu(); !r.ok()) return r;
+        begin_passes();
         return write_output();
     };
     if (mode_ == Mode::RenderThread) {
@@ -1255,6 +1296,7 @@ void GlesCloth::drop_gl() {
     pull();  // keep the latest state on the CPU; re-uploaded on the next device
     delete_now(gl_);
     programs_.clear();
+    vaos_.clear();
     gl_ready_ = false;
     record_ = 0;
     state_dirty_ = targets_dirty_ = info_dirty_ = true;

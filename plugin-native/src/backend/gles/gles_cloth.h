@@ -58,8 +58,11 @@ struct GlObjects {
     GLuint nbr_tex = 0, info_tex = 0, tri_tex = 0;
     GLuint kstart = 0, targets = 0, vertex_to_particle = 0, scratch = 0, tethers = 0, drag = 0;
     GLuint uniforms = 0;  ///< the DrapeSim uniform block (SimUniforms)
-    GLuint vao = 0, fbo = 0, rbo = 0;
+    GLuint staging = 0;   ///< pixel-unpack buffer that table textures are uploaded through
+    GLuint out_vao = 0;   ///< the output pass's inputs
+    GLuint fbo = 0, rbo = 0;
     std::vector<GLuint> programs;
+    std::vector<GLuint> vaos;  ///< per pass configuration (GlesCloth::vertex_array)
     void* context = nullptr;  ///< EGLContext they were made in
     bool empty() const;
 };
@@ -107,7 +110,8 @@ private:
     };
     struct Program {
         GLuint id = 0;
-        GLint u[4] = {};  ///< locations of kUniformNames (gles_cloth.cpp)
+        GLint u[6] = {};  ///< locations of kUniformNames (gles_cloth.cpp)
+        GLint unit_x = -1, unit_aux = -1;  ///< texture units u_x and u_aux are set to now
     };
 
     Result ensure_gl();
@@ -115,9 +119,26 @@ private:
     Result gpu_step(float dt);
     Result apply_edit(Access access, const std::function<void(Cloth&)>& fn);
     void bind_framebuffer();
+    /// GL state every pass relies on, set once per step: framebuffer, rasterizer discard, all
+    /// textures on their units (particle texture b on unit b).
+    void begin_passes();
     Result pull();
     void push_state();
-    void refresh_texture(int b);
+    /// Copies buffer b into its texture (on the GPU) if a pass wrote it since: called right
+    /// before a pass that fetches b's records as neighbours.
+    void refresh(int b);
+    /// Makes p current with u_x / u_aux on the units of buffers x / aux (-1: not sampled).
+    void use_program(Program& p, int x, int aux);
+    /// Vertex array reading buffer x (own record: iterate records with their lambdas when `inputs`
+    /// has kIterateRecords) and aux (state records), plus the inputs `inputs` names. Made once.
+    GLuint vertex_array(int x, int aux, uint32_t inputs);
+    /// One transform-feedback draw over the particles into buffer out (out2 < 0: one interleaved
+    /// iterate record per particle) or out and out2 (one state record each, separate attribs).
+    void draw(GLuint vao, int out, int out2);
+    /// Begin, draw `count` points, end, with the transform-feedback buffers already bound.
+    void feedback_draw(GLuint vao, uint32_t count);
+    void drop_pass_objects();
+    bool predict_has_dashpot() const;
     Result program(int pass, Program** out);
     Result output_program(Program** out);
     /// Uploads the DrapeSim block when a value changed (parameters, substep h) and binds it.
@@ -154,6 +175,12 @@ private:
     uint32_t record_ = 1;   // R of the allocated buffers
     uint32_t tex_rows_ = 0; // rows of the particle textures
     uint32_t tri_slots_ = 1;
+    bool tex_stale_[4] = {true, true, true, true};  // buffer written since its texture was refreshed
+    std::map<uint32_t, GLuint> vaos_;              // names in gl_.vaos by vertex_array's key
+    GLuint used_program_ = 0;      // within begin_passes .. end of step
+    int active_unit_ = -1;
+    bool unpack_bound_ = false;    // a particle buffer is bound to GL_PIXEL_UNPACK_BUFFER
+    GLint max_vertex_uniform_vectors_ = 0;
     bool gpu_newer_ = false;       // CPU copy is stale
     bool state_dirty_ = true;      // push CPU cur/disp
     bool targets_dirty_ = true;
@@ -162,7 +189,11 @@ private:
     GLuint out_buffer_ = 0;
     drape_vertex_layout out_layout_{};
     std::vector<std::pair<int, int>> keeps_;  // (first word, words) of passthrough chunks
+    // What the GPU holds of the tables an edit may change: uploaded again only when they differ.
+    std::vector<uint32_t> table_scratch_;
+    std::vector<uint32_t> info_uploaded_;     // per particle texels of gl_.info_tex
     std::vector<uint32_t> tethers_uploaded_;  // (anchor, length bits) per particle in gl_.tethers
+    std::vector<glm::vec3> targets_uploaded_; // kinematic targets in gl_.targets
     SimUniforms uniforms_{};          // DrapeSim as last uploaded
     bool uniforms_uploaded_ = false;  // uniforms_ is in gl_.uniforms
     uint32_t shape_capacity_ = 0;  // DRAPE_SHAPES of the interaction program being asked for

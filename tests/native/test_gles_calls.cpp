@@ -1,0 +1,186 @@
+// GL call budget of the GLES backend: the GL calls of N steady frames, counted by the library's GL
+// loader (every entry point counts its calls; drape_gl_call_count reads them). A frame is what
+// the Unity component does each frame: (re)push the colliders, step, write the mesh's vertex
+// buffer. Over the counted frames nothing may be read back from GPU memory, nothing uploaded
+// unless the caller changed it, and each transform-feedback pass costs a fixed, small number of
+// calls (vertex arrays and transform-feedback objects made once, textures bound once per step).
+#include <GLES3/gl3.h>
+
+#include <cstdint>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "drape_test_util.h"
+#include "gles_test_util.h"
+
+using namespace drape_test;
+
+namespace {
+
+/// Calls of the entry points a frame's verdicts look at.
+struct GlCalls {
+    uint64_t total = 0, draws = 0, uniforms = 0, reads = 0, uploads = 0, refreshes = 0, texture_binds = 0,
+             attrib_setup = 0;
+    static GlCalls now() {
+        auto n = [](const char* name) { return drape_gl_call_count(name); };
+        GlCalls c;
+        c.total = n(nullptr);
+        c.draws = n("glDrawArrays");
+        c.uniforms = n("glUniform1i") + n("glUniform3fv") + n("glUniform4fv");
+        // The loader has no glReadPixels or glGetBufferSubData: mapping is the only way to read.
+        c.reads = n("glMapBufferRange");
+        // Client memory enters GL only through these (table textures go through a staging buffer).
+        c.uploads = n("glBufferData") + n("glBufferSubData");
+        // Texture refreshes from a buffer, on the GPU (every glTexSubImage2D reads a bound buffer).
+        c.refreshes = n("glTexSubImage2D");
+        c.texture_binds = n("glBindTexture") + n("glActiveTexture");
+        c.attrib_setup = n("glEnableVertexAttribArray") + n("glDisableVertexAttribArray") +
+                         n("glVertexAttribPointer") + n("glVertexAttribIPointer");
+        return c;
+    }
+    GlCalls per_frame_since(const GlCalls& start, uint64_t frames) const {
+        GlCalls d;
+        d.total = (total - start.total) / frames;
+        d.draws = (draws - start.draws) / frames;
+        d.uniforms = (uniforms - start.uniforms) / frames;
+        d.reads = (reads - start.reads) / frames;
+        d.uploads = (uploads - start.uploads) / frames;
+        d.refreshes = (refreshes - start.refreshes) / frames;
+        d.texture_binds = (texture_binds - start.texture_binds) / frames;
+        d.attrib_setup = (attrib_setup - start.attrib_setup) / frames;
+        return d;
+    }
+};
+
+std::ostream& operator<<(std::ostream& os, const GlCalls& c) {
+    return os << c.total << " calls (" << c.draws << " draws, " << c.uniforms << " uniforms, " << c.refreshes
+              << " texture refreshes, " << c.texture_binds << " texture binds/unit switches, " << c.attrib_setup
+              << " attribute set-ups, " << c.uploads << " uploads, " << c.reads << " reads)";
+}
+
+enum class Extra { None, Tethers, CollidersAndTethers };
+
+struct BudgetCase {
+    const char* name;
+    drape_model model;
+    Extra extra;
+};
+
+class GlesCallBudget : public ::testing::TestWithParam<BudgetCase> {
+protected:
+    void SetUp() override {
+        const std::string why = gl_.create();
+        if (!why.empty() || !gl_.make_current()) {
+            gl_.destroy();
+            DRAPE_GLES_UNAVAILABLE(why.empty() ? "eglMakeCurrent failed" : why);
+        }
+        ready_ = true;
+    }
+    void TearDown() override {
+        if (ready_) gl_.destroy();
+    }
+    HeadlessGles gl_;
+    bool ready_ = false;
+};
+
+// Per pass, apart from uniforms: program (1), vertex array (1), binding and unbinding at most two
+// outputs (4), begin + draw + end (3), unbinding the refresh buffer (1), and refreshing at most two
+// input textures (unit switch + buffer bind + copy: 3 each) = 16. Per frame, apart from passes: the
+// caller's GL state saved and restored (8 texture units and 14 bindings, about 60 calls), textures
+// bound on their units once, error checks, the output buffer's size check, the pin-start copy.
+constexpr uint64_t kCallsPerPass = 16;
+constexpr uint64_t kCallsPerFrame = 100;
+// Uniforms per pass: u_substep and the two input samplers' units, or the colliders' two. The
+// parameters live in a uniform block, uploaded only when they change.
+constexpr uint64_t kUniformsPerPass = 3;
+
+TEST_P(GlesCallBudget, SteadyFramesReadNothingUploadNothingAndCostAFixedNumberOfCallsPerPass) {
+    const BudgetCase bc = GetParam();
+    const uint32_t cols = 32, rows = 32;
+    WorldPtr w = make_world(1);
+    drape_grid_desc g = grid_desc(cols, rows, 1.0f, 1.0f);
+    g.origin[1] = 1.0f;
+    drape_cloth* c = make_grid(w.get(), g, 0.5f, DRAPE_BACKEND_GLES);
+    ASSERT_NE(c, nullptr);
+    drape_params p{};
+    ASSERT_DRAPE_OK(drape_params_default(&p));
+    p.model = bc.model;
+    p.iterations = 4;
+    p.max_stretch = bc.extra == Extra::None ? 0.0f : 0.1f;
+    if (bc.model == DRAPE_MODEL_PBD) {
+        p.stiffness[0] = p.stiffness[1] = 1.0f;  // PBD stiffness is a fraction
+        p.stiffness[2] = 0.2f;
+        p.damping = 0.5f;  // the predict pass with dashpots reads textures
+    }
+    ASSERT_DRAPE_OK(drape_cloth_set_params(c, &p));
+    drape_pin pins[2] = {{sizeof(drape_pin), 0, {0, 1, 0}}, {sizeof(drape_pin), cols - 1, {1, 1, 0}}};
+    ASSERT_DRAPE_OK(drape_cloth_set_pins(c, pins, 2));
+    // Unity-like vertex stream: position, normal, uv (copied through on the GPU).
+    const uint32_t n = cols * rows;
+    const drape_vertex_layout layout{sizeof(drape_vertex_layout), 32, 0, 12};
+    GLuint vbo = 0;
+    glGenBuffers(1, &vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n) * 32, nullptr, GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    ASSERT_DRAPE_OK(drape_cloth_set_output_buffer(c, vbo, &layout));
+
+    auto frame = [&](int f) {
+        if (bc.extra == Extra::CollidersAndTethers) {
+            // A sphere under the sheet, moving every frame, pushed every frame as Unity does.
+            drape_collider s{};
+            s.struct_size = sizeof s;
+            s.id = 1;
+            s.shape = DRAPE_COLLIDER_SPHERE;
+            s.size[0] = 0.2f;
+            s.position[0] = 0.5f + 0.001f * float(f);
+            s.position[1] = 0.5f;
+            s.position[2] = -0.5f;
+            s.rotation[3] = 1.0f;
+            ASSERT_DRAPE_OK(drape_cloth_set_colliders(c, &s, 1));
+        }
+        ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
+    };
+    const int warm_up = 3, counted = 5;
+    for (int f = 0; f < warm_up; ++f) frame(f);  // programs, vertex arrays, first uploads
+    const GlCalls start = GlCalls::now();
+    for (int f = warm_up; f < warm_up + counted; ++f) frame(f);
+    const GlCalls per_frame = GlCalls::now().per_frame_since(start, counted);
+
+    const drape_stats st = stats_of(c);  // after counting: reading stats reads the GPU state back
+    uint64_t passes_per_substep = bc.model == DRAPE_MODEL_MASS_SPRING ? 1 : 1 + st.iterations;
+    if (bc.extra != Extra::None) ++passes_per_substep;                  // tethers
+    if (bc.extra == Extra::CollidersAndTethers) ++passes_per_substep;   // collisions
+    const uint64_t passes = st.substeps * passes_per_substep + 1;       // + the output pass
+    std::cout << "[ gl calls ] " << bc.name << ", " << cols << "x" << rows << ", " << st.substeps << " substeps, "
+              << passes << " passes per frame: " << per_frame << "\n";
+
+    EXPECT_EQ(per_frame.reads, 0u);
+    EXPECT_EQ(per_frame.uploads, 0u);
+    EXPECT_EQ(per_frame.draws, passes);
+    EXPECT_LE(per_frame.draws, st.substeps * (passes_per_substep + 2));
+    EXPECT_EQ(per_frame.attrib_setup, 0u) << "vertex arrays are made once per pass configuration";
+    EXPECT_LE(per_frame.refreshes, 2 * passes);
+    EXPECT_LE(per_frame.total - per_frame.uniforms, kCallsPerPass * passes + kCallsPerFrame);
+    EXPECT_LE(per_frame.uniforms, kUniformsPerPass * passes);
+    // Still simulating (parity with the CPU is test_gles.cpp's): the sheet's middle fell.
+    const std::vector<float> x = positions(c);
+    EXPECT_LT(x[size_t(rows / 2 * cols + cols / 2) * 3 + 1], 1.0f) << "the sheet fell under gravity";
+    glDeleteBuffers(1, &vbo);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Frames, GlesCallBudget,
+    ::testing::Values(BudgetCase{"MassSpring", DRAPE_MODEL_MASS_SPRING, Extra::None},
+                      BudgetCase{"MassSpring_Tethers", DRAPE_MODEL_MASS_SPRING, Extra::Tethers},
+                      BudgetCase{"MassSpring_Colliders", DRAPE_MODEL_MASS_SPRING, Extra::CollidersAndTethers},
+                      BudgetCase{"Pbd", DRAPE_MODEL_PBD, Extra::None},
+                      BudgetCase{"Pbd_Tethers", DRAPE_MODEL_PBD, Extra::Tethers},
+                      BudgetCase{"Pbd_Colliders", DRAPE_MODEL_PBD, Extra::CollidersAndTethers},
+                      BudgetCase{"Xpbd", DRAPE_MODEL_XPBD, Extra::None},
+                      BudgetCase{"Xpbd_Tethers", DRAPE_MODEL_XPBD, Extra::Tethers},
+                      BudgetCase{"Xpbd_Colliders", DRAPE_MODEL_XPBD, Extra::CollidersAndTethers}),
+    [](const ::testing::TestParamInfo<BudgetCase>& info) { return std::string(info.param.name); });
+
+}  // namespace
