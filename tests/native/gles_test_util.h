@@ -23,6 +23,9 @@
 /// GL ES calls libdrape made to entry point `name` (NULL: all) since it loaded them; exported by
 /// the library's GL loader for tests and the bench, not part of drape.h.
 extern "C" uint64_t drape_gl_call_count(const char* name);
+/// Replaces the driver function behind libdrape's entry point `name`; returns the one replaced
+/// (NULL for names it does not use). From the same loader, for tests that fake a device.
+extern "C" void* drape_gl_replace(const char* name, void* fn);
 
 namespace drape_test {
 

@@ -91,3 +91,17 @@ uint64_t drape_gl_call_count(const char* name) {
     return total;
 }
 
+void* drape_gl_replace(const char* name, void* fn) {
+    using namespace drape::gles;
+    if (!name) return nullptr;
+    load_error();  // loads: what is replaced now stays replaced
+#define DRAPE_GL_REPLACE(type, fn_name)                         \
+    if (std::strcmp(name, #fn_name) == 0) {                       \
+        void* replaced = reinterpret_cast<void*>(fn_name.fn);    \
+        fn_name.fn = reinterpret_cast<type>(fn);                 \
+        return replaced;                                         \
+    }
+    DRAPE_GL_FUNCTIONS(DRAPE_GL_REPLACE)
+#undef DRAPE_GL_REPLACE
+    return nullptr;
+}

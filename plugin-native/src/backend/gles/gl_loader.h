@@ -74,6 +74,7 @@
   X(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog) \
   X(PFNGLGETPROGRAMIVPROC, glGetProgramiv) \
   X(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog) \
+  X(PFNGLGETSHADERPRECISIONFORMATPROC, glGetShaderPrecisionFormat) \
   X(PFNGLGETSHADERIVPROC, glGetShaderiv) \
   X(PFNGLGETSTRINGPROC, glGetString) \
   X(PFNGLGETUNIFORMBLOCKINDEXPROC, glGetUniformBlockIndex) \
@@ -132,3 +133,7 @@ const char* load_error();
 /// tests and the bench (declared there, not in drape.h: a diagnostic, not part of the C ABI).
 extern "C" __attribute__((visibility("default"))) uint64_t drape_gl_call_count(const char* name);
 
+/// Replaces the driver function behind entry point `name` by `fn` (loading first) and returns the
+/// one it replaced; NULL, and nothing replaced, for a name the library does not use. For tests
+/// (a device that reports lower limits, a failing call); no GL work may run meanwhile.
+extern "C" __attribute__((visibility("default"))) void* drape_gl_replace(const char* name, void* fn);

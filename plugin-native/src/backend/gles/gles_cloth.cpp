@@ -256,6 +256,52 @@ Result link(const std::string& vs_source, const char* name, const std::vector<st
     return {};
 }
 
+/// Uniform vectors of the simulation's own (u_substep, the DrapeSim block's share), generously;
+/// colliders add 5 each.
+constexpr GLint kOwnUniformVectors = 64;
+
+/// The GL ES limits the backend relies on and what it needs of each, all within OpenGL ES 3.0's
+/// guaranteed minimums (after //). A device below one is refused when a cloth starts.
+struct Limit {
+    GLenum name;
+    const char* label;
+    GLint need;
+};
+const Limit kLimits[] = {
+    {GL_MAX_TEXTURE_SIZE, "GL_MAX_TEXTURE_SIZE", GLint(kTexWidth)},  // 2048: rows of kTexWidth texels
+    {GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, "GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS", 4},  // 16: u_x, u_aux, u_nbr, u_info
+    {GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, "GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS", kSetupUnit + 1},  // 32: units in use
+    {GL_MAX_VERTEX_ATTRIBS, "GL_MAX_VERTEX_ATTRIBS", kMaxAttribs},  // 16: locations up to aDrag; 1 + 15 kept chunks
+    {GL_MAX_VERTEX_OUTPUT_COMPONENTS, "GL_MAX_VERTEX_OUTPUT_COMPONENTS", 64},  // 64: output records of 64 words
+    {GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_ATTRIBS, "GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_ATTRIBS", 2},  // 4: v_x, v_d
+    {GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_COMPONENTS, "GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_COMPONENTS", 4},  // 4: a vec4
+    {GL_MAX_TRANSFORM_FEEDBACK_INTERLEAVED_COMPONENTS, "GL_MAX_TRANSFORM_FEEDBACK_INTERLEAVED_COMPONENTS",
+     64},  // 64: output records up to 256 bytes
+    {GL_MAX_VERTEX_UNIFORM_VECTORS, "GL_MAX_VERTEX_UNIFORM_VECTORS", kOwnUniformVectors + 4 * 5},  // 256: 4 colliders
+    {GL_MAX_VERTEX_UNIFORM_BLOCKS, "GL_MAX_VERTEX_UNIFORM_BLOCKS", 1},  // 12: DrapeSim
+    {GL_MAX_UNIFORM_BLOCK_SIZE, "GL_MAX_UNIFORM_BLOCK_SIZE", GLint(sizeof(SimUniforms))},  // 16384
+};
+
+Result check_limits() {
+    for (const Limit& l : kLimits) {
+        GLint have = 0;
+        glGetIntegerv(l.name, &have);
+        if (have < l.need)
+            return {DRAPE_ERROR_BACKEND_UNAVAILABLE, std::string("this OpenGL ES device offers ") + l.label + " = " +
+                                                         std::to_string(have) + ", the GLES backend needs at least " +
+                                                         std::to_string(l.need) + " (OpenGL ES 3.0 guarantees that)"};
+    }
+    // Every vertex-stage value is highp (the shaders say so); the CPU twin computes in float.
+    GLint range[2] = {}, precision = 0;
+    glGetShaderPrecisionFormat(GL_VERTEX_SHADER, GL_HIGH_FLOAT, range, &precision);
+    if (precision < 23)
+        return {DRAPE_ERROR_BACKEND_UNAVAILABLE, "this OpenGL ES device's vertex-stage highp float has " +
+                                                     std::to_string(precision) +
+                                                     " bits of precision, the GLES backend needs 23 (IEEE float, as "
+                                                     "OpenGL ES 3.0 guarantees)"};
+    return {};
+}
+
 uint32_t rows_for(uint64_t texels) { return uint32_t(std::max<uint64_t>(1, (texels + kTexWidth - 1) / kTexWidth)); }
 
 GLuint make_texture(GLenum internal, uint32_t rows) {
@@ -378,6 +424,7 @@ Result GlesCloth::ensure_gl() {
     if (gl_ready_) return {};
     std::string why;
     if (!context_current(&why)) return {DRAPE_ERROR_BACKEND_UNAVAILABLE, "GLES cloth: " + why};
+    if (Result r = check_limits(); !r.ok()) return r;
     free_graves();
     if ((topo_.nbr.slots + 3) / 4 > kMaxLambdaVec4 && params_.model == DRAPE_MODEL_XPBD)
         return {DRAPE_ERROR_INVALID_ARGUMENT, "GLES XPBD supports up to 32 neighbours per vertex; this mesh has " +
@@ -965,7 +1012,7 @@ Result GlesCloth::gpu_step(float dt) {
     if (shape_count) {
         capacity = 4;
         while (capacity < shape_count) capacity *= 2;
-        if (GLint(capacity * 5) + 64 > max_vertex_uniform_vectors_)  // 64: the simulation's own uniforms, generously
+        if (kOwnUniformVectors + GLint(capacity * 5) > max_vertex_uniform_vectors_)
             return {DRAPE_ERROR_INVALID_ARGUMENT, std::to_string(shape_count) + " colliders need " +
                                                       std::to_string(capacity * 5) + " uniform vectors; this GL offers " +
                                                       std::to_string(max_vertex_uniform_vectors_) + " to vertex shaders"};

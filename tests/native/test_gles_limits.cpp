@@ -1,0 +1,117 @@
+// The GLES backend checks every OpenGL ES limit it relies on when a cloth starts, and refuses a
+// device below one with DRAPE_ERROR_BACKEND_UNAVAILABLE and a message naming the limit. Mesa meets
+// ES 3.0's minimums, so the test lowers one limit at a time: it swaps the library's
+// glGetIntegerv (or glGetShaderPrecisionFormat) for one that reports less (drape_gl_replace).
+#include <GLES3/gl3.h>
+
+#include <string>
+
+#include "drape_test_util.h"
+#include "gles_test_util.h"
+
+using namespace drape_test;
+
+namespace {
+
+PFNGLGETINTEGERVPROC g_real_get_integer = nullptr;
+GLenum g_lowered = 0;
+GLint g_lowered_to = 0;
+void GL_APIENTRY get_integer_lowered(GLenum name, GLint* out) {
+    g_real_get_integer(name, out);
+    if (name == g_lowered) *out = g_lowered_to;
+}
+
+PFNGLGETSHADERPRECISIONFORMATPROC g_real_precision = nullptr;
+void GL_APIENTRY precision_mediump_only(GLenum stage, GLenum type, GLint* range, GLint* precision) {
+    g_real_precision(stage, type, range, precision);
+    if (stage == GL_VERTEX_SHADER && type == GL_HIGH_FLOAT) *precision = 10;  // what mediump guarantees
+}
+
+/// Puts the library's real entry point back at the end of the scope.
+struct Restore {
+    const char* name;
+    void* real;
+    ~Restore() { drape_gl_replace(name, real); }
+};
+
+class GlesLimits : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const std::string why = gl_.create();
+        if (!why.empty() || !gl_.make_current()) {
+            gl_.destroy();
+            DRAPE_GLES_UNAVAILABLE(why.empty() ? "eglMakeCurrent failed" : why);
+        }
+        ready_ = true;
+    }
+    void TearDown() override {
+        if (ready_) gl_.destroy();
+    }
+    /// Status of creating a 4x4 GLES cloth; the message in *message.
+    drape_status create(std::string* message) {
+        WorldPtr w = make_world(1);
+        drape_cloth_desc d{sizeof d, DRAPE_BACKEND_GLES, 1.0f};
+        const drape_grid_desc g = grid_desc(4, 4, 1.0f, 1.0f);
+        drape_cloth* c = nullptr;
+        const drape_status s = drape_cloth_create_grid(w.get(), &d, &g, &c);
+        *message = s == DRAPE_OK ? "" : drape_last_error();
+        EXPECT_EQ(c == nullptr, s != DRAPE_OK);
+        return s;
+    }
+    HeadlessGles gl_;
+    bool ready_ = false;
+};
+
+}  // namespace
+
+TEST_F(GlesLimits, ADeviceBelowALimitIsRefusedByName) {
+    g_real_get_integer =
+        reinterpret_cast<PFNGLGETINTEGERVPROC>(drape_gl_replace("glGetIntegerv", reinterpret_cast<void*>(&get_integer_lowered)));
+    ASSERT_NE(g_real_get_integer, nullptr);
+    Restore restore{"glGetIntegerv", reinterpret_cast<void*>(g_real_get_integer)};
+    // One below what the backend needs (an ES 2 class device has no vertex texture units at all).
+    const struct {
+        GLenum name;
+        const char* label;
+        GLint value;
+    } lowered[] = {
+        {GL_MAX_TEXTURE_SIZE, "GL_MAX_TEXTURE_SIZE", 1023},
+        {GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, "GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS", 0},
+        {GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, "GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS", 7},
+        {GL_MAX_VERTEX_ATTRIBS, "GL_MAX_VERTEX_ATTRIBS", 15},
+        {GL_MAX_VERTEX_OUTPUT_COMPONENTS, "GL_MAX_VERTEX_OUTPUT_COMPONENTS", 63},
+        {GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_ATTRIBS, "GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_ATTRIBS", 1},
+        {GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_COMPONENTS, "GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_COMPONENTS", 3},
+        {GL_MAX_TRANSFORM_FEEDBACK_INTERLEAVED_COMPONENTS, "GL_MAX_TRANSFORM_FEEDBACK_INTERLEAVED_COMPONENTS", 63},
+        {GL_MAX_VERTEX_UNIFORM_VECTORS, "GL_MAX_VERTEX_UNIFORM_VECTORS", 83},
+        {GL_MAX_VERTEX_UNIFORM_BLOCKS, "GL_MAX_VERTEX_UNIFORM_BLOCKS", 0},
+        {GL_MAX_UNIFORM_BLOCK_SIZE, "GL_MAX_UNIFORM_BLOCK_SIZE", 64},
+    };
+    std::string message;
+    for (const auto& l : lowered) {
+        g_lowered = l.name;
+        g_lowered_to = l.value;
+        EXPECT_EQ(create(&message), DRAPE_ERROR_BACKEND_UNAVAILABLE) << l.label;
+        EXPECT_NE(message.find(std::string(l.label) + " = " + std::to_string(l.value)), std::string::npos) << message;
+    }
+    // The real device (Mesa, ES 3.0 minimums and more) is accepted.
+    g_lowered = 0;
+    EXPECT_DRAPE_OK(create(&message));
+}
+
+TEST_F(GlesLimits, ADeviceWithoutFullPrecisionHighpIsRefused) {
+    g_real_precision = reinterpret_cast<PFNGLGETSHADERPRECISIONFORMATPROC>(
+        drape_gl_replace("glGetShaderPrecisionFormat", reinterpret_cast<void*>(&precision_mediump_only)));
+    ASSERT_NE(g_real_precision, nullptr);
+    Restore restore{"glGetShaderPrecisionFormat", reinterpret_cast<void*>(g_real_precision)};
+    std::string message;
+    EXPECT_EQ(create(&message), DRAPE_ERROR_BACKEND_UNAVAILABLE);
+    EXPECT_NE(message.find("highp float has 10 bits"), std::string::npos) << message;
+}
+
+TEST_F(GlesLimits, ReplacingAnEntryPointTheLibraryDoesNotUseChangesNothing) {
+    EXPECT_EQ(drape_gl_replace("glNotAFunction", reinterpret_cast<void*>(&get_integer_lowered)), nullptr);
+    EXPECT_EQ(drape_gl_replace(nullptr, nullptr), nullptr);
+    std::string message;
+    EXPECT_DRAPE_OK(create(&message));
+}
