@@ -465,3 +465,123 @@ TEST_F(Gles, CreatingAndDestroyingManyClothsLeaksNoGlObjects) {
     glDeleteBuffers(1, &vbo);
     EXPECT_EQ(GlNameCounts::take(), before);
 }
+
+// ---- Context loss --------------------------------------------------------------------------
+// The GLES cloth steps in one EGL context, is read back, steps further (GPU state that no one
+// read), and then that context is destroyed and a new one made. Told so, the cloth rebuilds its
+// GL objects in the new context and resumes from the read-back state: it goes on like a CPU cloth
+// that was never interrupted and had the same history up to the readback, within the parity
+// bounds above (1e-5 of the size per step taken, 1e-3 over the run). The lost steps use another
+// dt, so resuming with their substep length (velocity = d / h_prev) would miss too.
+class GlesContextLoss : public Gles, public ::testing::WithParamInterface<drape_model> {};
+
+TEST_P(GlesContextLoss, ResumesFromTheReadbackInANewContext) {
+    WorldPtr w = make_world(1);
+    const uint32_t cols = 8;
+    const drape_grid_desc g = hanging_grid(cols, 6);
+    drape_cloth* cpu = make_grid(w.get(), g, 0.5f, DRAPE_BACKEND_CPU);
+    drape_cloth* gpu = make_grid(w.get(), g, 0.5f, DRAPE_BACKEND_GLES);
+    ASSERT_NE(gpu, nullptr);
+    drape_params p = params_of(cpu);
+    p.model = GetParam();
+    p.wind[0] = 2.0f;
+    if (p.model == DRAPE_MODEL_PBD)  // stiffness as a fraction per iteration
+        for (float& k : p.stiffness) k = std::min(k, 0.5f);
+    for (drape_cloth* c : {cpu, gpu}) {
+        ASSERT_DRAPE_OK(drape_cloth_set_params(c, &p));
+        pin_corners(c, cols);
+    }
+    const float extent = std::sqrt(2.0f);
+    const int before = 4, after = 6;
+    for (int s = 1; s <= before; ++s) {
+        ASSERT_DRAPE_OK(drape_cloth_step(cpu, 1.0f / 60));
+        ASSERT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 60));
+    }
+    ASSERT_DRAPE_OK(drape_cloth_readback(gpu));
+    const std::vector<float> at_readback = positions(gpu);  // the CPU copy: no further readback
+    ASSERT_LE(max_abs_diff(positions(cpu), at_readback), 1e-5f * extent * float(before));
+    for (int s = 0; s < 3; ++s) ASSERT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 30));  // never read: lost
+
+    gl_.destroy();
+    ASSERT_DRAPE_OK(drape_gles_context_lost());
+    // Gone and not replaced: GL work fails cleanly, reading gives the state it will resume from.
+    EXPECT_EQ(drape_cloth_step(gpu, 1.0f / 60), DRAPE_ERROR_BACKEND_UNAVAILABLE);
+    EXPECT_NE(std::string(drape_last_error()).find("context was lost"), std::string::npos) << drape_last_error();
+    EXPECT_EQ(positions(gpu), at_readback);
+
+    const std::string why = gl_.create();
+    ASSERT_TRUE(why.empty()) << why;
+    ASSERT_TRUE(gl_.make_current());
+    EXPECT_EQ(positions(gpu), at_readback);
+    float worst = 0;
+    for (int s = before + 1; s <= before + after; ++s) {
+        ASSERT_DRAPE_OK(drape_cloth_step(cpu, 1.0f / 60));
+        ASSERT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 60));
+        const float err = max_abs_diff(positions(cpu), positions(gpu));
+        worst = std::max(worst, err);
+        ASSERT_LE(err, 1e-5f * extent * float(s)) << "step " << s;
+    }
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    std::cout << "[ ctx loss ] max |gles - cpu| after resuming = " << worst << " m\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, GlesContextLoss,
+                         ::testing::Values(DRAPE_MODEL_MASS_SPRING, DRAPE_MODEL_PBD, DRAPE_MODEL_XPBD),
+                         [](const ::testing::TestParamInfo<drape_model>& info) {
+                             return std::string(info.param == DRAPE_MODEL_MASS_SPRING ? "MassSpring"
+                                                : info.param == DRAPE_MODEL_PBD       ? "Pbd"
+                                                                                      : "Xpbd");
+                         });
+
+// A cloth whose context is gone and not replaced: every call that needs GL says so and changes
+// nothing; reading, setters and destroying work; the cloth comes back in the next context, where
+// it writes the output buffer again once given one of that context.
+TEST_F(Gles, ContextGoneAndNotReplacedFailsClearly) {
+    WorldPtr w = make_world(1);
+    drape_cloth* gpu = make_grid(w.get(), hanging_grid(5, 5), 0.5f, DRAPE_BACKEND_GLES);
+    drape_cloth* doomed = make_grid(w.get(), hanging_grid(4, 4), 0.5f, DRAPE_BACKEND_GLES);
+    pin_corners(gpu, 5);
+    GLuint vbo = 0;
+    glGenBuffers(1, &vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferData(GL_ARRAY_BUFFER, 25 * 12, nullptr, GL_DYNAMIC_DRAW);
+    drape_vertex_layout l{sizeof l, 12, 0, -1};
+    ASSERT_DRAPE_OK(drape_cloth_set_output_buffer(gpu, vbo, &l));
+    ASSERT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 60));
+    ASSERT_DRAPE_OK(drape_cloth_readback(gpu));
+    const std::vector<float> kept = positions(gpu);
+
+    gl_.destroy();
+    ASSERT_DRAPE_OK(drape_gles_context_lost());
+    EXPECT_DRAPE_OK(drape_cloth_destroy(doomed));  // its names are forgotten, not deleted
+    EXPECT_EQ(drape_cloth_step(gpu, 1.0f / 60), DRAPE_ERROR_BACKEND_UNAVAILABLE);
+    EXPECT_NE(std::string(drape_last_error()).find("context was lost"), std::string::npos) << drape_last_error();
+    EXPECT_EQ(drape_world_step(w.get(), 1.0f / 60), DRAPE_ERROR_BACKEND_UNAVAILABLE);
+    EXPECT_EQ(drape_cloth_set_output_buffer(gpu, 1, &l), DRAPE_ERROR_BACKEND_UNAVAILABLE);
+    EXPECT_DRAPE_OK(drape_cloth_readback(gpu));  // nothing newer than the CPU copy
+    EXPECT_EQ(positions(gpu), kept);
+    drape_params p = params_of(gpu);
+    p.wind[2] = 1.0f;
+    EXPECT_DRAPE_OK(drape_cloth_set_params(gpu, &p));  // recorded on the CPU side
+    EXPECT_DRAPE_OK(drape_gles_context_lost());        // again: harmless
+
+    const std::string why = gl_.create();
+    ASSERT_TRUE(why.empty()) << why;
+    ASSERT_TRUE(gl_.make_current());
+    EXPECT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 60));
+    // The old output buffer was forgotten: a buffer of the new context receives the positions.
+    GLuint vbo2 = 0;
+    glGenBuffers(1, &vbo2);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo2);
+    glBufferData(GL_ARRAY_BUFFER, 25 * 12, nullptr, GL_DYNAMIC_DRAW);
+    ASSERT_DRAPE_OK(drape_cloth_set_output_buffer(gpu, vbo2, &l));
+    ASSERT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 60));
+    const std::vector<float> now = positions(gpu);
+    EXPECT_NE(now, kept);
+    const auto* mapped = static_cast<const float*>(glMapBufferRange(GL_ARRAY_BUFFER, 0, 25 * 12, GL_MAP_READ_BIT));
+    ASSERT_NE(mapped, nullptr);
+    EXPECT_LE(max_abs_diff(std::vector<float>(mapped, mapped + 75), now), 1e-6f);
+    glUnmapBuffer(GL_ARRAY_BUFFER);
+    glDeleteBuffers(1, &vbo2);
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+}

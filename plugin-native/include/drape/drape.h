@@ -583,6 +583,22 @@ DRAPE_API drape_status drape_cloth_set_output_buffer(drape_cloth* cloth, uint32_
 /** Copies the GPU state of a GLES cloth to its CPU copy (immediate: now; Unity: at the next render
  *  event). Not needed for drape_cloth_read in immediate use. No-op for CPU cloths. */
 DRAPE_API drape_status drape_cloth_readback(drape_cloth* cloth);
+/** The GL context(s) of the GLES cloths are gone (EGL context destroyed, Android context loss):
+ *  every GLES cloth of every world forgets the names of its GL objects without deleting them (no
+ *  GL call is made here; any thread), and so do destroyed cloths whose objects were waiting for
+ *  their context. On its next GL work, with a new OpenGL ES 3 context current (immediate use:
+ *  the calling thread; Unity: the render event), a cloth builds its programs, buffers and textures
+ *  again from its description, settings, pins and colliders as they are then, and its state from
+ *  its CPU copy. That copy is the state of the last drape_cloth_readback, drape_cloth_read or
+ *  drape_cloth_get_stats that read the GPU, or of the last setter that wrote positions or
+ *  velocities, whichever came later: GPU steps after it are lost (the cloth resumes from that
+ *  state, with the substep length it had then). To lose nothing, read back before the context
+ *  goes; Unity's device shutdown event does this itself. The output buffer (a name in the old
+ *  context) is forgotten: set the new one with drape_cloth_set_output_buffer. Until a context is
+ *  current, GL work fails with DRAPE_ERROR_BACKEND_UNAVAILABLE; drape_cloth_read returns the CPU
+ *  copy. Call it only after the old context is gone or no longer current anywhere; with several
+ *  contexts, all GLES cloths start again from their CPU copies. No-op without GLES cloths. */
+DRAPE_API drape_status drape_gles_context_lost(void);
 
 /* ================================ 8. Unity ==================================================== */
 /* UnityPluginLoad / UnityPluginUnload are exported too (Unity's native plug-in interface). */

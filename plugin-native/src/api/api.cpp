@@ -742,6 +742,13 @@ drape_status drape_cloth_readback(drape_cloth* cloth) {
     return guarded([&] { return status_of(as_cloth(cloth)->readback()); });
 }
 
+drape_status drape_gles_context_lost(void) {
+    return guarded([&] {
+        gl_context_lost();
+        return ok();
+    });
+}
+
 }  // extern "C"
 
 // ---- colliders, sleeping, touch drag, grabs, owner transform ---------------------------------

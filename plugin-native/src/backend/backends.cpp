@@ -42,4 +42,10 @@ Result create_cloth(World& world, drape_backend backend, std::shared_ptr<const D
     return {};
 }
 
+void gl_context_lost() {
+#ifdef DRAPE_WITH_GLES
+    gles::context_lost();
+#endif
+}
+
 }  // namespace drape

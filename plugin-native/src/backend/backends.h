@@ -15,4 +15,7 @@ Result backend_available(drape_backend backend);
 Result create_cloth(World& world, drape_backend backend, std::shared_ptr<const Description> description,
                     std::unique_ptr<Cloth>* out);
 
+/// Every GL context the GLES backend used is gone (drape_gles_context_lost); nothing without GLES.
+void gl_context_lost();
+
 }  // namespace drape

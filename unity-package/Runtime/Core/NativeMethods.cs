@@ -110,6 +110,9 @@ namespace Drape.Core
         internal static extern Status drape_cloth_readback(ClothHandle cloth);
 
         [DllImport(Library, CallingConvention = Cdecl)]
+        internal static extern Status drape_gles_context_lost();
+
+        [DllImport(Library, CallingConvention = Cdecl)]
         internal static extern Status drape_unity_render_event(out IntPtr callback, out int eventId);
 
         // ---- Colliders, sleeping, touch drag, owner transform ----

@@ -61,6 +61,14 @@ namespace Drape.Core
                                 "drape_unity_render_event");
         }
 
+        /// <summary>The GL context of the GLES cloths is gone: every GLES cloth forgets its GL objects
+        /// (without deleting them) and rebuilds them on its next GL work in a new context, resuming
+        /// from its CPU copy (the state of its last readback). See drape_gles_context_lost.</summary>
+        public static void GlesContextLost()
+        {
+            NativeMethods.Check(NativeMethods.drape_gles_context_lost(), "drape_gles_context_lost");
+        }
+
         /// <summary>Steps every cloth of the world by dt seconds (0 &lt; dt &lt;= 1). Throws on the
         /// first failure; the other cloths were still stepped. Allocates nothing unless it throws.</summary>
         public void Step(float dt)

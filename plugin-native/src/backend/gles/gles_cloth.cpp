@@ -355,15 +355,28 @@ void render_thread_tick() {
     if (!context_current()) return;
     free_graves();
     std::lock_guard<std::mutex> lock(registry_mutex());
-    for (GlesCloth* c : registry()) c->run_pending();
+    for (GlesCloth* c : registry())
+        if (c->mode() == GlesCloth::Mode::RenderThread) c->run_pending();
 }
 
 void render_thread_shutdown() {
     {
         std::lock_guard<std::mutex> lock(registry_mutex());
-        for (GlesCloth* c : registry()) c->drop_gl();
+        for (GlesCloth* c : registry())
+            if (c->mode() == GlesCloth::Mode::RenderThread) c->drop_gl();
     }
     free_graves();
+}
+
+void context_lost() {
+    {
+        std::lock_guard<std::mutex> lock(registry_mutex());
+        for (GlesCloth* c : registry()) c->forget_gl();
+    }
+    // Their names may be reused by the next context (even its EGLContext handle may be): never
+    // delete them there.
+    std::lock_guard<std::mutex> lock(grave_mutex());
+    graveyard().clear();
 }
 
 void release_gl(GlObjects& objects) {
@@ -384,14 +397,13 @@ GlesCloth::GlesCloth(World& world, std::shared_ptr<const Description> descriptio
     std::vector<uint32_t> incident(topo_.particle_count, 0);
     for (uint32_t p : topo_.triangles) ++incident[p];
     for (uint32_t c : incident) tri_slots_ = std::max(tri_slots_, c);
-    if (mode_ == Mode::RenderThread) {
-        std::lock_guard<std::mutex> lock(registry_mutex());
-        registry().insert(this);
-    }
+    // Every cloth (both modes) is told when its context is lost; render events run RenderThread ones.
+    std::lock_guard<std::mutex> lock(registry_mutex());
+    registry().insert(this);
 }
 
 GlesCloth::~GlesCloth() {
-    if (mode_ == Mode::RenderThread) {
+    {
         std::lock_guard<std::mutex> lock(registry_mutex());
         registry().erase(this);
     }
@@ -423,7 +435,11 @@ Result GlesCloth::init_gl() {
 Result GlesCloth::ensure_gl() {
     if (gl_ready_) return {};
     std::string why;
-    if (!context_current(&why)) return {DRAPE_ERROR_BACKEND_UNAVAILABLE, "GLES cloth: " + why};
+    if (!context_current(&why))
+        return {DRAPE_ERROR_BACKEND_UNAVAILABLE,
+                context_lost_ ? "GLES cloth: its GL context was lost and no new one is current (" + why +
+                                    "); it resumes from its CPU copy once one is"
+                              : "GLES cloth: " + why};
     if (Result r = check_limits(); !r.ok()) return r;
     free_graves();
     if ((topo_.nbr.slots + 3) / 4 > kMaxLambdaVec4 && params_.model == DRAPE_MODEL_XPBD)
@@ -488,6 +504,7 @@ Result GlesCloth::ensure_gl() {
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     record_ = 0;  // particle buffers are (re)made by sync_gpu for the model's record size
     gl_ready_ = true;
+    context_lost_ = false;
     state_dirty_ = targets_dirty_ = info_dirty_ = true;
     return gl_error("creating GLES objects");
 }
@@ -1037,6 +1054,11 @@ Result GlesCloth::gpu_step(float dt) {
     const uint32_t substeps = substeps_for(dt);
     const float h = dt / float(substeps);
     const uint32_t n = topo_.particle_count;
+    if (!gpu_newer_) {
+        // The CPU copy is the state now: what a lost context resumes from (forget_gl).
+        cpu_h_prev_ = h_prev_;
+        cpu_fresh_ = fresh_;
+    }
     if (!kinematic_.empty()) {
         // Kinematic particles move from where they are now (GPU copy, no readback).
         glBindBuffer(GL_COPY_READ_BUFFER, gl_.buffers[g_[0]]);
@@ -1347,6 +1369,30 @@ void GlesCloth::drop_gl() {
     gl_ready_ = false;
     record_ = 0;
     state_dirty_ = targets_dirty_ = info_dirty_ = true;
+}
+
+void GlesCloth::forget_gl() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (gpu_newer_ && !state_dirty_) {
+        // The GPU state went with the context: back to the step that the CPU copy holds (the
+        // last readback), with the substep bookkeeping of that moment.
+        h_prev_ = cpu_h_prev_;
+        fresh_ = cpu_fresh_;
+    }
+    gpu_newer_ = false;
+    gl_ = GlObjects{};  // names of a dead context: never deleted (the next context may reuse them)
+    programs_.clear();
+    gl_ready_ = false;
+    context_lost_ = true;
+    record_ = 0;
+    state_dirty_ = targets_dirty_ = info_dirty_ = true;
+    uniforms_uploaded_ = false;
+    vaos_.clear();
+    for (bool& stale : tex_stale_) stale = true;
+    used_program_ = 0;
+    active_unit_ = -1;
+    unpack_bound_ = false;
+    out_buffer_ = 0;  // a buffer of the lost context: the caller sets one of the new context
 }
 
 }  // namespace drape::gles

@@ -50,6 +50,10 @@ bool render_thread_device_ready();
 void render_thread_tick();
 /// Device shutdown: every RenderThread cloth keeps its state on the CPU and frees its GL objects.
 void render_thread_shutdown();
+/// Every GL context GLES cloths used is gone (drape_gles_context_lost): each cloth forgets its GL
+/// object names without deleting them and rebuilds from its CPU copy on its next GL work; GL
+/// objects of destroyed cloths waiting for their context are forgotten too. Any thread; no GL call.
+void context_lost();
 
 /// GL objects of one cloth (names; 0 = none).
 struct GlObjects {
@@ -100,6 +104,9 @@ public:
     void run_pending();
     /// RenderThread: device lost; keep the state on the CPU.
     void drop_gl();
+    /// The context of its GL objects is gone: forget them (no GL call) and resume, on the next GL
+    /// work in a new context, from the CPU copy (state at the last readback or CPU-side write).
+    void forget_gl();
 
 private:
     struct Op {
@@ -182,6 +189,11 @@ private:
     bool unpack_bound_ = false;    // a particle buffer is bound to GL_PIXEL_UNPACK_BUFFER
     GLint max_vertex_uniform_vectors_ = 0;
     bool gpu_newer_ = false;       // CPU copy is stale
+    // h_prev_ and fresh_ as they were when the CPU copy was last the state (before the GPU
+    // stepped past it): what a cloth whose context was lost resumes with, together with x_ and d_.
+    float cpu_h_prev_ = 1.0f;
+    bool cpu_fresh_ = true;
+    bool context_lost_ = false;    // forget_gl ran; no GL objects made since
     bool state_dirty_ = true;      // push CPU cur/disp
     bool targets_dirty_ = true;
     bool info_dirty_ = true;
