@@ -187,3 +187,53 @@ TEST(Unity, RenderEventWithoutPluginLoadEnablesGles) {
     EXPECT_EQ(available, 0u);
     render.run([&] { gl.destroy(); });
 }
+
+// The render thread's context is lost (Android): the main thread says so, the render thread makes
+// a new one, and the cloth resumes from its last readback at the next render event, like a CPU
+// cloth that was never interrupted.
+TEST(Unity, RenderThreadClothResumesAfterContextLoss) {
+    RenderThread render;
+    HeadlessGles gl;
+    const std::string why = render.run([&] { return gl.create(); });
+    if (!why.empty() || !render.run([&] { return gl.make_current(); })) DRAPE_GLES_UNAVAILABLE(why);
+    void* callback = nullptr;
+    int32_t event_id = -1;
+    ASSERT_DRAPE_OK(drape_unity_render_event(&callback, &event_id));
+    auto fire = [&] { render.run([&] { reinterpret_cast<void (*)(int)>(callback)(event_id); }); };
+    fire();  // makes GLES available (no plug-in load here)
+
+    WorldPtr w = make_world(1);
+    drape_grid_desc g = grid_desc(8, 6, 1.0f, 1.0f);
+    g.origin[1] = 1.0f;
+    drape_cloth* cpu = make_grid(w.get(), g, 0.5f, DRAPE_BACKEND_CPU);
+    drape_cloth* gpu = make_grid(w.get(), g, 0.5f, DRAPE_BACKEND_GLES);
+    ASSERT_NE(gpu, nullptr);
+    auto frame = [&] {
+        ASSERT_DRAPE_OK(drape_cloth_step(cpu, 1.0f / 60));
+        ASSERT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 60));
+        fire();
+    };
+    for (int f = 0; f < 4; ++f) frame();
+    ASSERT_DRAPE_OK(drape_cloth_readback(gpu));
+    fire();
+    render.run([&] { gl.destroy(); });
+    ASSERT_DRAPE_OK(drape_gles_context_lost());
+    const std::string again = render.run([&] { return gl.create(); });
+    ASSERT_TRUE(again.empty()) << again;
+    ASSERT_TRUE(render.run([&] { return gl.make_current(); }));
+    for (int f = 0; f < 4; ++f) frame();
+    ASSERT_DRAPE_OK(drape_cloth_readback(gpu));
+    fire();
+    ASSERT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 60));  // no error met on the render thread
+    const std::vector<float> expect = positions(cpu);
+    const std::vector<float> got = positions(gpu);
+    float err = 0;
+    for (size_t k = 0; k < expect.size(); ++k) err = std::max(err, std::fabs(expect[k] - got[k]));
+    EXPECT_LT(expect[1], 0.99f);  // it fell
+    EXPECT_LE(err, 1e-5f * 8 * std::sqrt(2.0f));
+    ASSERT_DRAPE_OK(drape_cloth_destroy(gpu));
+    fire();
+    w.reset();
+    UnityPluginUnload();
+    render.run([&] { gl.destroy(); });
+}
