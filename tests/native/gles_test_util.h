@@ -152,6 +152,26 @@ inline bool running_in_ci() {
         GTEST_SKIP() << "no headless GLES context: " << (why);                               \
     } while (0)
 
+/// Test fixture with a headless GLES context current during each test (skipped without one,
+/// failed under CI=true). Base: ::testing::Test or a TestWithParam.
+template <class Base = ::testing::Test>
+class WithHeadlessGles : public Base {
+protected:
+    void SetUp() override {
+        const std::string why = gl_.create();
+        if (!why.empty() || !gl_.make_current()) {
+            gl_.destroy();
+            DRAPE_GLES_UNAVAILABLE(why.empty() ? "eglMakeCurrent failed" : why);
+        }
+        ready_ = true;
+    }
+    void TearDown() override {
+        if (ready_) gl_.destroy();
+    }
+    HeadlessGles gl_;
+    bool ready_ = false;
+};
+
 /// Counts live GL object names 1..limit of each kind (glIs*): a leak check.
 struct GlNameCounts {
     int buffers = 0, textures = 0, programs = 0, vertex_arrays = 0, framebuffers = 0, renderbuffers = 0;

@@ -17,22 +17,7 @@ using namespace drape_test;
 
 namespace {
 
-class Gles : public ::testing::Test {
-protected:
-    void SetUp() override {
-        const std::string why = gl_.create();
-        if (!why.empty() || !gl_.make_current()) {
-            gl_.destroy();
-            DRAPE_GLES_UNAVAILABLE(why.empty() ? "eglMakeCurrent failed" : why);
-        }
-        ready_ = true;
-    }
-    void TearDown() override {
-        if (ready_) gl_.destroy();
-    }
-    HeadlessGles gl_;
-    bool ready_ = false;
-};
+class Gles : public WithHeadlessGles<> {};
 
 drape_grid_desc hanging_grid(uint32_t cols, uint32_t rows) {
     drape_grid_desc g = grid_desc(cols, rows, 1.0f, 1.0f);

@@ -67,22 +67,7 @@ struct BudgetCase {
     Extra extra;
 };
 
-class GlesCallBudget : public ::testing::TestWithParam<BudgetCase> {
-protected:
-    void SetUp() override {
-        const std::string why = gl_.create();
-        if (!why.empty() || !gl_.make_current()) {
-            gl_.destroy();
-            DRAPE_GLES_UNAVAILABLE(why.empty() ? "eglMakeCurrent failed" : why);
-        }
-        ready_ = true;
-    }
-    void TearDown() override {
-        if (ready_) gl_.destroy();
-    }
-    HeadlessGles gl_;
-    bool ready_ = false;
-};
+class GlesCallBudget : public WithHeadlessGles<::testing::TestWithParam<BudgetCase>> {};
 
 // Per pass, apart from uniforms: program (1), vertex array (1), binding and unbinding at most two
 // outputs (4), begin + draw + end (3), unbinding the refresh buffer (1), and refreshing at most two

@@ -34,19 +34,8 @@ struct Restore {
     ~Restore() { drape_gl_replace(name, real); }
 };
 
-class GlesLimits : public ::testing::Test {
+class GlesLimits : public WithHeadlessGles<> {
 protected:
-    void SetUp() override {
-        const std::string why = gl_.create();
-        if (!why.empty() || !gl_.make_current()) {
-            gl_.destroy();
-            DRAPE_GLES_UNAVAILABLE(why.empty() ? "eglMakeCurrent failed" : why);
-        }
-        ready_ = true;
-    }
-    void TearDown() override {
-        if (ready_) gl_.destroy();
-    }
     /// Status of creating a 4x4 GLES cloth; the message in *message.
     drape_status create(std::string* message) {
         WorldPtr w = make_world(1);
@@ -58,8 +47,6 @@ protected:
         EXPECT_EQ(c == nullptr, s != DRAPE_OK);
         return s;
     }
-    HeadlessGles gl_;
-    bool ready_ = false;
 };
 
 }  // namespace
