@@ -26,8 +26,9 @@
 //                            (DRAPE_DRAG: a_drag = this substep's share of the drag offset, first
 //                            substep only) then kernels::collide against DRAPE_SHAPES colliders
 //                            (0: no collision code). Two outputs like MASS_SPRING: v_x, v_d
-//   DRAPE_PASS_SHIFT         the cloth's origin moved by u_shift (whole metres): v_x = x - u_shift
-//                            (Cloth::shift_origin on the GPU state; d is unchanged)
+//   DRAPE_PASS_MOVE          RigidMove (core/interaction.h) of the whole state: owner transform
+//                            (Cloth::move_state) and re-centring (Cloth::shift_origin: identity
+//                            rotation, to = -shift). Two outputs like MASS_SPRING: v_x, v_d
 //   DRAPE_SHAPES             capacity of u_shapes (colliders, 5 vec4 each: kernels::CollideShape)
 //   DRAPE_DASHPOT            predict with PBD's explicit dashpots
 //   DRAPE_XPBD               constraint pass is XPBD (lambdas ride in the iterate record), else PBD
@@ -44,7 +45,7 @@
 // floatBitsToUint(rest), group, 0); the particle table texel i = (neighbour count, active springs,
 // 0, 0). All textures are u_tex_width texels wide (row-major).
 #if !defined(DRAPE_PASS_MASS_SPRING) && !defined(DRAPE_PASS_PREDICT) && !defined(DRAPE_PASS_CONSTRAINT) && \
-    !defined(DRAPE_PASS_TETHER) && !defined(DRAPE_PASS_INTERACT) && !defined(DRAPE_PASS_SHIFT)
+    !defined(DRAPE_PASS_TETHER) && !defined(DRAPE_PASS_INTERACT) && !defined(DRAPE_PASS_MOVE)
 #define DRAPE_PASS_MASS_SPRING 1
 #endif
 #ifndef DRAPE_SLOTS
@@ -88,8 +89,12 @@ layout(std140) uniform DrapeSim {
 // x = 1 / h_prev, y = h / h_prev (SubstepContext::h_ratio), z = accel_h, w = kinematic path fraction
 // at the end of the substep.
 uniform vec4 u_substep;
-#ifdef DRAPE_PASS_SHIFT
-uniform vec3 u_shift;
+#ifdef DRAPE_PASS_MOVE
+// RigidMove: x -> rot * (x - pivot) + to; d turns with rot (keep_velocity 1) or is zeroed (0).
+uniform vec4 u_move_rot;             // quaternion (x, y, z, w)
+uniform vec3 u_move_pivot;
+uniform vec3 u_move_to;
+uniform float u_move_keep_velocity;
 #endif
 
 in vec4 a_x;                        // own record: position x (MS, PREDICT) / displacement iterate
@@ -113,12 +118,10 @@ in vec3 a_ktarget;                  // pin target at the end of the step
 #endif
 
 #if defined(DRAPE_PASS_MASS_SPRING) || defined(DRAPE_COMMIT) || defined(DRAPE_PASS_TETHER) || \
-    defined(DRAPE_PASS_INTERACT) || defined(DRAPE_PASS_SHIFT)
+    defined(DRAPE_PASS_INTERACT) || defined(DRAPE_PASS_MOVE)
 out vec4 v_x;                       // new position record
 #endif
-#ifndef DRAPE_PASS_SHIFT
 out vec4 v_d;                       // new displacement (state or iterate) record
-#endif
 #if defined(DRAPE_XPBD) && (defined(DRAPE_PASS_PREDICT) || (defined(DRAPE_PASS_CONSTRAINT) && !defined(DRAPE_COMMIT)))
 #if DRAPE_LAMBDA_VEC4 >= 1
 out vec4 v_lambda0;
@@ -263,7 +266,7 @@ vec4 solve_slots4(Own o, int q, vec4 lambda, inout vec3 dx) {
 #endif
 #endif
 
-#if DRAPE_SHAPES > 0
+#if DRAPE_SHAPES > 0 || defined(DRAPE_PASS_MOVE)
 // glm's quat * vec3 (glm/detail/type_quat.inl), q = (x, y, z, w)
 vec3 rotate(vec4 q, vec3 v) {
     vec3 uv = cross(q.xyz, v);
@@ -271,6 +274,9 @@ vec3 rotate(vec4 q, vec3 v) {
     return v + ((uv * q.w) + uuv) * 2.0;
 }
 vec4 conjugate(vec4 q) { return vec4(-q.xyz, q.w); }
+#endif
+
+#if DRAPE_SHAPES > 0
 
 // kernels::shape_distance (collide.h): signed distance and outward normal in the local frame.
 float shape_distance(int shape, vec3 size, vec3 p, out vec3 n) {
@@ -317,8 +323,9 @@ vec3 kinematic_at() { return a_kstart + (a_ktarget - a_kstart) * u_substep.w; }
 #endif
 
 void main() {
-#ifdef DRAPE_PASS_SHIFT
-    v_x = vec4(a_x.xyz - u_shift, a_x.w);
+#ifdef DRAPE_PASS_MOVE
+    v_x = vec4(rotate(u_move_rot, a_x.xyz - u_move_pivot) + u_move_to, a_x.w);
+    v_d = u_move_keep_velocity > 0.0 ? vec4(rotate(u_move_rot, a_aux.xyz), a_aux.w) : vec4(0.0, 0.0, 0.0, a_x.w);
     return;
 #else
     int i = gl_VertexID;
@@ -578,5 +585,5 @@ void main() {
 #endif
 #endif
 #endif
-#endif  // DRAPE_PASS_SHIFT
+#endif  // DRAPE_PASS_MOVE
 }

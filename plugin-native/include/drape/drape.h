@@ -476,8 +476,9 @@ DRAPE_API drape_status drape_cloth_get_self_collision(const drape_cloth* cloth, 
 
 /* ================================ 6. Interaction ============================================== */
 /* Touch drag runs on every backend (a GLES cloth reads its positions back once per
- * drape_cloth_drag). Grabs and the owner transform are CPU-only: they return
- * DRAPE_ERROR_BACKEND_UNAVAILABLE for GLES cloths. Limits: 16 touches per drag call, 16 grabs
+ * drape_cloth_drag). The owner transform runs on every backend (a GLES cloth moves its GPU state
+ * by one transform-feedback pass per changed call, before its next step). Grabs are CPU-only: they
+ * return DRAPE_ERROR_BACKEND_UNAVAILABLE for GLES cloths. Limits: 16 touches per drag call, 16 grabs
  * held at once, pick radius in (0, 1e4] px, screen positions within 1e6 px. */
 
 /* GENERATED BEGIN drape_view */

@@ -958,10 +958,12 @@ drape_status drape_cloth_set_owner(drape_cloth* cloth, const drape_owner* owner)
     if (drape_status s = abi::Layout<drape_owner>::check(*owner, &problem)) return fail(s, "owner " + problem);
     if (drape_status s = check_unit_quat(owner->rotation, "owner")) return s;
     return guarded([&] {
-        drape_owner local = *owner;
-        to_local(*as_cloth(cloth), owner->position, local.position);
-        as_cloth(cloth)->set_owner(local);
-        return ok();
+        // Converted to the cloth's frame when applied (see set_pins); a GLES cloth moves its GPU
+        // state in a pass.
+        return apply_edit(as_cloth(cloth), Access::NoState, [o = *owner](Cloth& c) mutable {
+            to_local(c, o.position, o.position);
+            c.set_owner(o);
+        });
     });
 }
 

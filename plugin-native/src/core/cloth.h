@@ -136,6 +136,9 @@ protected:
     /// Whole-metre shift that brings `reference` (a local position) back near the origin; zero
     /// while it is within kRecentreDistance (core/params.h) on every axis.
     static glm::vec3 recentre_shift(const glm::vec3& reference);
+    /// Moves the particle state rigidly (owner transform): here the CPU copy; a backend whose state
+    /// lives elsewhere moves that too.
+    virtual void move_state(const RigidMove& m);
     /// origin_ += shift, every position held here (CPU copy, pin targets, colliders, owner,
     /// self-collision reference) -= shift.
     void shift_origin(const glm::vec3& shift);

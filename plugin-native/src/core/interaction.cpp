@@ -252,17 +252,11 @@ void Cloth::set_owner(const drape_owner& o) {
     if (dq.w < 0) dq = -dq;
     ix_.owner_pos = pos;
     ix_.owner_rot = rot;
-    const uint32_t n = topo_.particle_count;
-    Particle* cur = x_.data();
-    Particle* disp = d_.data();
-    auto full = [&](const glm::vec3& x) { return dq * (x - p_old) + pos; };
+    const RigidMove full{dq, p_old, pos, false};
     if (glm::length(pos - p_old) > o.teleport_distance) {
         // Teleport: the whole cloth (and its pins) jumps rigidly with the owner, at rest.
-        for (uint32_t i = 0; i < n; ++i) {
-            cur[i] = Particle(full(glm::vec3(cur[i])), cur[i].w);
-            disp[i] = Particle(glm::vec3(0.0f), cur[i].w);
-            kinematic_target_[i] = full(kinematic_target_[i]);
-        }
+        move_state(full);
+        for (glm::vec3& t : kinematic_target_) t = full.apply(t);
         fresh_ = true;
         wake();
         return;
@@ -272,15 +266,16 @@ void Cloth::set_owner(const drape_owner& o) {
     // rest (inertia) over the next step's substeps, dragging the free cloth behind them.
     const glm::quat carry_rot = glm::slerp(glm::quat(1, 0, 0, 0), dq, 1.0f - o.angular_inertia);
     const glm::vec3 carry_move = (pos - p_old) * (1.0f - o.linear_inertia);
-    auto carried = [&](const glm::vec3& x) { return carry_rot * (x - p_old) + p_old + carry_move; };
-    if (o.linear_inertia < 1 || o.angular_inertia < 1) {
-        for (uint32_t i = 0; i < n; ++i) {
-            cur[i] = Particle(carried(glm::vec3(cur[i])), cur[i].w);
-            disp[i] = Particle(carry_rot * glm::vec3(disp[i]), disp[i].w);
-        }
-    }
-    for (uint32_t k : kinematic_) kinematic_target_[k] = full(kinematic_target_[k]);
+    if (o.linear_inertia < 1 || o.angular_inertia < 1) move_state({carry_rot, p_old, p_old + carry_move, true});
+    for (uint32_t k : kinematic_) kinematic_target_[k] = full.apply(kinematic_target_[k]);
     wake();
+}
+
+void Cloth::move_state(const RigidMove& m) {
+    for (uint32_t i = 0; i < topo_.particle_count; ++i) {
+        x_[i] = Particle(m.apply(glm::vec3(x_[i])), x_[i].w);
+        d_[i] = m.keep_velocity ? Particle(m.rot * glm::vec3(d_[i]), d_[i].w) : Particle(glm::vec3(0.0f), x_[i].w);
+    }
 }
 
 }  // namespace drape

@@ -24,6 +24,16 @@ struct ColliderState {
     glm::quat rot_start, rot_end;  ///< unit
 };
 
+/// A rigid motion of the whole particle state (owner transform, re-centring): each position x goes
+/// to rot * (x - pivot) + to; displacements turn with rot (keep_velocity) or become zero.
+struct RigidMove {
+    glm::quat rot{1.0f, 0.0f, 0.0f, 0.0f};
+    glm::vec3 pivot{0.0f};
+    glm::vec3 to{0.0f};
+    bool keep_velocity = true;
+    glm::vec3 apply(const glm::vec3& x) const { return rot * (x - pivot) + to; }
+};
+
 struct Grab {
     uint32_t touch_id;
     uint32_t particle;

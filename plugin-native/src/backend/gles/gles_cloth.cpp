@@ -25,11 +25,14 @@ constexpr uint32_t kTexWidth = 1024;
 /// XPBD lambdas ride in the record as vec4s; sim.vert.glsl declares up to 8 (32 slots).
 constexpr uint32_t kMaxLambdaVec4 = 8;
 
-enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3, kTether = 4, kInteract = 5, kShift = 6 };  // kCommit: last iteration
-// Uniforms outside the DrapeSim block (sim_uniforms.h): per substep, per collider set, per shift.
-// u_x / u_aux: the texture units of the pass's input buffers (see kNbrUnit).
-enum Uniform { uSubstep, uShapes, uShapeCount, uShift, uX, uAux, kUniformCount };
-const char* const kUniformNames[kUniformCount] = {"u_substep", "u_shapes", "u_shape_count", "u_shift", "u_x", "u_aux"};
+enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3, kTether = 4, kInteract = 5, kMove = 6 };  // kCommit: last iteration
+// Uniforms outside the DrapeSim block (sim_uniforms.h): per substep, per collider set, per rigid
+// move. u_x / u_aux: the texture units of the pass's input buffers (see kNbrUnit).
+enum Uniform { uSubstep, uShapes, uShapeCount, uMoveRot, uMovePivot, uMoveTo, uMoveKeepVelocity, uX, uAux, kUniformCount };
+const char* const kUniformNames[kUniformCount] = {"u_substep",   "u_shapes",  "u_shape_count",
+                                                  "u_move_rot",  "u_move_pivot", "u_move_to",
+                                                  "u_move_keep_velocity", "u_x", "u_aux"};
+static_assert(kUniformCount <= GlesCloth::kMaxUniforms, "GlesCloth::Program::u holds every location");
 // Attribute locations (bound before linking).
 enum Attrib {
     aX = 0, aAux = 1, aKStart = 2, aKTarget = 3, aLambda0 = 4, aTetherAnchor = 12, aTetherLength = 13, aDrag = 14,
@@ -720,6 +723,7 @@ Result GlesCloth::pull() {
     std::string why;
     if (!context_current(&why))
         return {DRAPE_ERROR_BACKEND_UNAVAILABLE, "reading a GLES cloth back needs its GL context: " + why};
+    if (Result r = run_gpu_moves(); !r.ok()) return r;
     const uint32_t n = topo_.particle_count;
     Particle* const targets[2] = {x_.data(), d_.data()};  // from GPU roles cur (x) and disp (d)
     GLint bound = 0;
@@ -786,7 +790,7 @@ const std::string& GlesCloth::variant_defines(int pass) const {
     if (pass == kConstraint || pass == kCommit) d += "#define DRAPE_PASS_CONSTRAINT 1\n";
     if (pass == kCommit) d += "#define DRAPE_COMMIT 1\n";
     if (pass == kTether) d += "#define DRAPE_PASS_TETHER 1\n";
-    if (pass == kShift) d += "#define DRAPE_PASS_SHIFT 1\n";
+    if (pass == kMove) d += "#define DRAPE_PASS_MOVE 1\n";
     if (pass == kInteract) {
         d += "#define DRAPE_PASS_INTERACT 1\n";
         if (drag_variant_) d += "#define DRAPE_DRAG 1\n";
@@ -807,10 +811,10 @@ Result GlesCloth::program(int pass, Program** out) {
     if (it == programs_.end()) {
         // Mass-spring and commit: positions and displacements into two buffers (separate attribs);
         // predict and constraint: one displacement-iterate record [+ lambdas] (interleaved).
-        const bool two_outputs = pass == kMassSpring || pass == kCommit || pass == kTether || pass == kInteract;
+        const bool two_outputs =
+            pass == kMassSpring || pass == kCommit || pass == kTether || pass == kInteract || pass == kMove;
         std::vector<std::string> varyings;
         if (two_outputs) varyings = {"v_x", "v_d"};
-        else if (pass == kShift) varyings = {"v_x"};
         else varyings = {"v_d"};
         const bool xpbd = params_.model == DRAPE_MODEL_XPBD && (pass == kPredict || pass == kConstraint);
         if (xpbd)
@@ -924,13 +928,38 @@ void GlesCloth::run_pass(Program& p, int x, int aux, int out, int out2, bool con
     draw(vertex_array(x, aux, inputs), out, out2);
 }
 
-void GlesCloth::shift_gpu_state(Program& p, const glm::vec3& shift) {
+void GlesCloth::move_gpu_state(Program& p, const RigidMove& m) {
     int& cur = g_[0];
-    int& spare = g_[2];
-    use_program(p, -1, -1);
-    glUniform3fv(p.u[uShift], 1, &shift.x);
-    draw(vertex_array(cur, cur, 0), spare, -1);  // reads a_x only
-    std::swap(cur, spare);
+    int& disp = g_[1];
+    use_program(p, -1, -1);  // own records only: no texture
+    const glm::vec4 rot(m.rot.x, m.rot.y, m.rot.z, m.rot.w);
+    glUniform4fv(p.u[uMoveRot], 1, &rot.x);
+    glUniform3fv(p.u[uMovePivot], 1, &m.pivot.x);
+    glUniform3fv(p.u[uMoveTo], 1, &m.to.x);
+    glUniform1f(p.u[uMoveKeepVelocity], m.keep_velocity ? 1.0f : 0.0f);
+    draw(vertex_array(cur, disp, 0), g_[2], g_[3]);
+    std::swap(cur, g_[2]);
+    std::swap(disp, g_[3]);
+}
+
+void GlesCloth::move_state(const RigidMove& m) {
+    Cloth::move_state(m);  // the CPU copy (the state while it is to be pushed; else kept consistent)
+    if (!state_dirty_) gpu_moves_.push_back(m);
+}
+
+Result GlesCloth::run_gpu_moves() {
+    if (gpu_moves_.empty()) return {};
+    if (state_dirty_) {  // the CPU copy, moved too, replaces the GPU state anyway
+        gpu_moves_.clear();
+        return {};
+    }
+    Program* p = nullptr;
+    if (Result r = program(kMove, &p); !r.ok()) return r;
+    StateGuard guard;
+    begin_passes();
+    for (const RigidMove& m : gpu_moves_) move_gpu_state(*p, m);
+    gpu_moves_.clear();
+    return gl_error("moving the GLES cloth");
 }
 
 void GlesCloth::run_tether(Program& p, int x, int d, int out_x, int out_d) {
@@ -999,6 +1028,7 @@ Result GlesCloth::gpu_step(float dt) {
     drain_gl_errors();
     StateGuard guard;
     if (Result r = sync_gpu(); !r.ok()) return r;
+    if (Result r = run_gpu_moves(); !r.ok()) return r;
     if (out_buffer_) {
         // The caller may have deleted or resized the buffer since: refuse before stepping.
         if (!glIsBuffer(out_buffer_))
@@ -1018,8 +1048,8 @@ Result GlesCloth::gpu_step(float dt) {
     if (Result r = program(first, &p_first); !r.ok()) return r;
     if (has_tethers())  // else no tether program and no tether pass (CpuCloth::step's condition)
         if (Result r = program(kTether, &p_tether); !r.ok()) return r;
-    Program* p_shift = nullptr;  // compiled with the others: a first re-centre mid-game compiles nothing
-    if (Result r = program(kShift, &p_shift); !r.ok()) return r;
+    Program* p_move = nullptr;  // compiled with the others: a first re-centre mid-game compiles nothing
+    if (Result r = program(kMove, &p_move); !r.ok()) return r;
     // Interaction (CpuCloth::collide): colliders in every substep, drag in the first.
     // Variants: DRAPE_SHAPES = collider capacity (power of two >= 4, 0 without colliders).
     Program *p_interact_first = nullptr, *p_interact = nullptr;
@@ -1133,7 +1163,7 @@ Result GlesCloth::gpu_step(float dt) {
     const glm::vec3 shift = recentre_shift(kinematic_.empty() ? glm::vec3(x_[0])
                                                              : kinematic_target_[kinematic_[0]]);
     if (shift != glm::vec3(0.0f)) {
-        shift_gpu_state(*p_shift, shift);
+        move_gpu_state(*p_move, {glm::quat(1.0f, 0.0f, 0.0f, 0.0f), glm::vec3(0.0f), -shift, true});
         shift_origin(shift);
         targets_dirty_ = true;
     }
@@ -1328,7 +1358,7 @@ Result GlesCloth::supports(Feature feature) const {
                 "GLES runs MASS_SPRING, PBD and XPBD"};
     case Feature::Sleep: return cpu_only("sleeping");
     case Feature::Grab: return cpu_only("grab");
-    case Feature::Owner: return cpu_only("owner transform");
+    case Feature::Owner: return {};  // moved on the GPU (move_gpu_state)
     case Feature::SelfCollision:
         return {DRAPE_ERROR_BACKEND_UNAVAILABLE, "self-collision is not implemented on the GLES backend yet: use a "
                                                  "CPU or CPU_THREADED cloth, or leave it off"};
@@ -1380,6 +1410,7 @@ void GlesCloth::forget_gl() {
         fresh_ = cpu_fresh_;
     }
     gpu_newer_ = false;
+    gpu_moves_.clear();  // made on the CPU copy, which the cloth resumes from
     gl_ = GlObjects{};  // names of a dead context: never deleted (the next context may reuse them)
     programs_.clear();
     gl_ready_ = false;

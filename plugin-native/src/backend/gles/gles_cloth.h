@@ -76,6 +76,7 @@ void release_gl(GlObjects& objects);
 class GlesCloth final : public Cloth {
 public:
     enum class Mode { Immediate, RenderThread };
+    static constexpr int kMaxUniforms = 16;  ///< uniforms outside the DrapeSim block per program
 
     GlesCloth(World& world, std::shared_ptr<const Description> description, Mode mode);
     ~GlesCloth() override;
@@ -117,7 +118,7 @@ private:
     };
     struct Program {
         GLuint id = 0;
-        GLint u[6] = {};  ///< locations of kUniformNames (gles_cloth.cpp)
+        GLint u[kMaxUniforms] = {};  ///< locations of kUniformNames (gles_cloth.cpp)
         GLint unit_x = -1, unit_aux = -1;  ///< texture units u_x and u_aux are set to now
     };
 
@@ -153,8 +154,13 @@ private:
     /// One transform-feedback pass over the particles: reads buffers x and aux, writes `out` (and
     /// `out2` >= 0 for the two-output passes: out gets v_x, out2 v_d). sub: u_substep.
     void run_pass(Program& p, int x, int aux, int out, int out2, bool constraint, const glm::vec4& sub);
-    /// Cloth::shift_origin on the GPU positions: x - shift into the spare buffer, which becomes x.
-    void shift_gpu_state(Program& p, const glm::vec3& shift);
+    /// A RigidMove of the GPU state (owner transform, re-centring): x and d into the spare pair,
+    /// which becomes x and d.
+    void move_gpu_state(Program& p, const RigidMove& m);
+    /// Cloth::move_state: the CPU copy now, the GPU state by the moves queued here before the next
+    /// GL work that uses it (the next step or readback; GL may not be current now).
+    void move_state(const RigidMove& m) override;
+    Result run_gpu_moves();
     /// kernels::tether: reads state buffers x and d, writes them to out_x and out_d.
     void run_tether(Program& p, int x, int d, int out_x, int out_d);
     bool has_tethers() const { return params_.max_stretch > 0 && !kinematic_.empty(); }
@@ -211,6 +217,7 @@ private:
     uint32_t shape_capacity_ = 0;  // DRAPE_SHAPES of the interaction program being asked for
     bool drag_variant_ = false;    // DRAPE_DRAG of the interaction program being asked for
     std::vector<float> shape_data_;
+    std::vector<RigidMove> gpu_moves_;  // owner moves the GPU state has not had yet (in order)
     std::vector<glm::vec3> drag_share_;
 };
 
