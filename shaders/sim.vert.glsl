@@ -29,7 +29,7 @@
 //   DRAPE_PASS_MOVE          RigidMove (core/interaction.h) of the whole state: owner transform
 //                            (Cloth::move_state) and re-centring (Cloth::shift_origin: identity
 //                            rotation, to = -shift). Two outputs like MASS_SPRING: v_x, v_d
-//   DRAPE_SHAPES             capacity of u_shapes (colliders, 5 vec4 each: kernels::CollideShape)
+//   DRAPE_SHAPES             capacity of u_shapes (colliders, DRAPE_COLLIDER_VEC4 each: layout.h)
 //   DRAPE_DASHPOT            predict with PBD's explicit dashpots
 //   DRAPE_XPBD               constraint pass is XPBD (lambdas ride in the iterate record), else PBD
 //   DRAPE_KINEMATIC          some particles have w = 0: place them on their pin path
@@ -60,6 +60,7 @@
 #ifndef DRAPE_SHAPES
 #define DRAPE_SHAPES 0
 #endif
+#include "layout.h"
 
 precision highp float;
 precision highp int;
@@ -103,9 +104,9 @@ in vec4 a_aux;                      // own: displacement d (MS, PREDICT, TETHER)
 in vec3 a_drag;                     // drag offset * (1 / substeps), zero for untouched particles
 #endif
 #if DRAPE_SHAPES > 0
-// kernels::CollideShape per collider: (pos0, margin), (pos1, friction), rot0, rot1 (x, y, z, w),
-// (size, shape), interpolated for this substep on the CPU exactly as Cloth::interaction_substep.
-uniform vec4 u_shapes[DRAPE_SHAPES * 5];
+// kernels::CollideShape per collider (layout.h), interpolated for this substep on the CPU exactly
+// as CpuCloth::collide.
+uniform vec4 u_shapes[DRAPE_SHAPES * DRAPE_COLLIDER_VEC4];
 uniform int u_shape_count;
 #endif
 #ifdef DRAPE_PASS_TETHER
@@ -190,7 +191,7 @@ uvec4 fetch_nbr(int slot) { return texelFetch(u_nbr, texel(slot), 0); }
 uvec4 fetch_info(int i) { return texelFetch(u_info, texel(i), 0); }
 
 // kernels::active_slot: a group is on where its stiffness is
-bool active_group(uint g) { return g < 3u && u_stiffness[g] > 0.0; }
+bool active_group(uint g) { return g < uint(DRAPE_GROUP_COUNT) && u_stiffness[g] > 0.0; }
 
 // kernels::direction: unit vector and length; zero vector for a zero-length spring.
 vec3 direction(vec3 d, out float len) {
@@ -280,18 +281,18 @@ vec4 conjugate(vec4 q) { return vec4(-q.xyz, q.w); }
 
 // kernels::shape_distance (collide.h): signed distance and outward normal in the local frame.
 float shape_distance(int shape, vec3 size, vec3 p, out vec3 n) {
-    if (shape == 0) {  // sphere
+    if (shape == DRAPE_COLLIDER_SPHERE) {
         float len = sqrt(dot(p, p));
         n = len > 0.0 ? p / len : vec3(0.0, 1.0, 0.0);
         return len - size.x;
     }
-    if (shape == 1) {  // capsule
+    if (shape == DRAPE_COLLIDER_CAPSULE) {
         vec3 q = vec3(p.x, p.y - max(-size.y, min(size.y, p.y)), p.z);
         float len = sqrt(dot(q, q));
         n = len > 0.0 ? q / len : vec3(1.0, 0.0, 0.0);
         return len - size.x;
     }
-    if (shape == 2) {  // box
+    if (shape == DRAPE_COLLIDER_BOX) {
         vec3 q = abs(p) - size;
         vec3 s = vec3(p.x < 0.0 ? -1.0 : 1.0, p.y < 0.0 ? -1.0 : 1.0, p.z < 0.0 ? -1.0 : 1.0);
         if (q.x > 0.0 || q.y > 0.0 || q.z > 0.0) {
@@ -311,7 +312,7 @@ float shape_distance(int shape, vec3 size, vec3 p, out vec3 n) {
         n = vec3(0.0, 0.0, s.z);
         return q.z;
     }
-    n = vec3(0.0, 1.0, 0.0);  // plane
+    n = vec3(0.0, 1.0, 0.0);  // DRAPE_COLLIDER_PLANE
     return p.y;
 }
 #endif
@@ -346,8 +347,9 @@ void main() {
     vec3 x_in = xi;
     vec3 si = x_in - dd;
     for (int k = 0; k < u_shape_count; ++k) {
-        vec4 c0 = u_shapes[5 * k], c1 = u_shapes[5 * k + 1], rot0 = u_shapes[5 * k + 2], rot1 = u_shapes[5 * k + 3];
-        vec4 c4 = u_shapes[5 * k + 4];
+        int r = DRAPE_COLLIDER_VEC4 * k;
+        vec4 c0 = u_shapes[r], c1 = u_shapes[r + 1], rot0 = u_shapes[r + 2], rot1 = u_shapes[r + 3];
+        vec4 c4 = u_shapes[r + 4];
         vec3 size = c4.xyz;
         int shape = int(c4.w);
         float margin = c0.w;
@@ -370,7 +372,7 @@ void main() {
                 float t = 0.0, d = d0;
                 vec3 dir = seg / len;
                 vec3 nh = n0;
-                for (int it = 0; it < 16 && d > 1e-6 && t < len; ++it) {  // kSweepIterations
+                for (int it = 0; it < DRAPE_SWEEP_ITERATIONS && d > 1e-6 && t < len; ++it) {
                     t += d;
                     if (t >= len) break;
                     d = shape_distance(shape, size, p0 + dir * t, nh) - margin;

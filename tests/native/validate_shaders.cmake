@@ -1,9 +1,13 @@
 # Validates every shaders/*.glsl with glslangValidator (GLSL ES 300, no -V), and each variant the
 # GLES backend compiles (same #defines as GlesCloth::variant_defines / output_program).
-# Inputs: VALIDATOR, SHADER_DIR.
-set(failures 0)
+# Each is validated as the library embeds it, its #include lines spliced (into SPLICED_DIR).
+# Inputs: VALIDATOR, SHADER_DIR, SPLICED_DIR.
+include("${CMAKE_CURRENT_LIST_DIR}/../../plugin-native/src/backend/gles/splice_includes.cmake")
 function(check file stage)
-  execute_process(COMMAND ${VALIDATOR} -l -S ${stage} ${ARGN} ${SHADER_DIR}/${file}
+  file(READ "${SHADER_DIR}/${file}" text)
+  drape_splice_includes("${SHADER_DIR}" "${text}" text)
+  file(WRITE "${SPLICED_DIR}/${file}" "${text}")
+  execute_process(COMMAND ${VALIDATOR} -l -S ${stage} ${ARGN} ${SPLICED_DIR}/${file}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
     message(SEND_ERROR "glslangValidator ${file} ${ARGN}:\n${out}${err}")

@@ -294,6 +294,12 @@ STRUCTS = [
 ]
 
 
+# ---- Enums the shaders spell ------------------------------------------------------------------------
+# generate.py writes their values as #defines (drape.h's names) into shaders/layout.h for GLSL, which
+# cannot include drape.h.
+SHADER_ENUMS = ["drape_group", "drape_collider_shape"]
+
+
 # ---- GLES uniform block ---------------------------------------------------------------------------
 # What every GLES pass reads that changes only with the parameters, the substep length or the cloth's
 # origin: one std140 uniform block shared by all programs (one binding point), uploaded when a value

@@ -9,7 +9,7 @@ trap 'rm -rf "$tmp"' EXIT
 generated=(unity-package/Runtime/Core/Enums.cs unity-package/Runtime/Core/Structs.cs
            tests/dotnet/LayoutProbe/drape_layout_probe.c plugin-native/src/core/abi_tables.h
            plugin-native/src/backend/gles/sim_uniforms.h)
-with_blocks=(plugin-native/include/drape/drape.h shaders/sim.vert.glsl shaders/output.vert.glsl)
+with_blocks=(plugin-native/include/drape/drape.h shaders/sim.vert.glsl shaders/output.vert.glsl shaders/layout.h)
 copy() {
   local g
   for g in "${generated[@]}" "${with_blocks[@]}"; do mkdir -p "$tmp/$(dirname "$g")"; cp "$root/$g" "$tmp/$g"; done
@@ -32,5 +32,10 @@ copy
 sed -i 's/float u_damping;/float u_damping_changed;/' "$tmp/shaders/sim.vert.glsl"
 if python3 "$root/tools/abi/generate.py" --check --root "$tmp" >/dev/null 2>&1; then
   echo "check passed with a shader's GENERATED block edited by hand"; exit 1
+fi
+copy
+sed -i 's/#define DRAPE_COLLIDER_BOX 2/#define DRAPE_COLLIDER_BOX 5/' "$tmp/shaders/layout.h"
+if python3 "$root/tools/abi/generate.py" --check --root "$tmp" >/dev/null 2>&1; then
+  echo "check passed with a shader enum value in layout.h edited by hand"; exit 1
 fi
 echo "generate.py --check fails on every stale file"

@@ -23,10 +23,12 @@
 #include <glm/vec4.hpp>
 
 #include "drape/drape.h"
+#include "shaders/layout.h"
 
 namespace drape::kernels {
 
-/// One collider during one substep. Layout mirrors a std140 block (vec4s) for the GLES shader.
+/// One collider during one substep: the collider record of shaders/layout.h (DRAPE_COLLIDER_VEC4
+/// vec4s; the GLES backend uploads shape as a float).
 struct CollideShape {
     glm::vec3 pos0; float margin;     ///< centre at the substep start (m); margin (m, >= 0)
     glm::vec3 pos1; float friction;   ///< centre at the substep end (m); Coulomb coefficient (>= 0)
@@ -34,6 +36,7 @@ struct CollideShape {
     glm::quat rot1;                   ///< orientation at the substep end (unit)
     glm::vec3 size; uint32_t shape;   ///< drape_collider_shape and its sizes (see drape_collider)
 };
+static_assert(sizeof(CollideShape) == DRAPE_COLLIDER_VEC4 * sizeof(glm::vec4), "collider record of shaders/layout.h");
 
 /// Signed distance (m) of local point p from the shape's surface (negative inside) and the
 /// outward unit normal at the closest surface point. Exact distance for all four shapes, so it
@@ -79,10 +82,6 @@ inline float shape_distance(uint32_t shape, const glm::vec3& size, const glm::ve
     }
 }
 
-/// Iterations of the swept (sphere-traced) entry search. Each advances by the exact distance, so
-/// few are needed except for grazing motion, where a slightly late entry point does no harm.
-constexpr int kSweepIterations = 16;
-
 /// Moves particles [begin, end) of x out of every collider (surface + margin) and applies
 /// friction to their tangential motion relative to the collider over the substep.
 /// Friction (position-based Coulomb, Macklin et al. 2014 "Unified particle physics", eq. 24):
@@ -120,7 +119,7 @@ inline void collide(const CollideShape* shapes, uint32_t shape_count, glm::vec4*
                     float t = 0.0f, d = d0;
                     const glm::vec3 dir = seg / len;
                     glm::vec3 nh = n0;
-                    for (int it = 0; it < kSweepIterations && d > 1e-6f && t < len; ++it) {
+                    for (int it = 0; it < DRAPE_SWEEP_ITERATIONS && d > 1e-6f && t < len; ++it) {
                         t += d;
                         if (t >= len) break;
                         d = shape_distance(c.shape, c.size, p0 + dir * t, &nh) - c.margin;

@@ -1,5 +1,7 @@
 # Embeds shaders/*.glsl into a C++ header (run by CMake at build time: cmake -P).
-# Inputs: SHADER_DIR, OUTPUT. Each file becomes drape::gles::shaders::<name with . -> _>.
+# Inputs: SHADER_DIR, OUTPUT. Each file becomes drape::gles::shaders::<name with . -> _>, with its
+# #include lines replaced by the shaders/ headers they name (splice_includes.cmake).
+include("${CMAKE_CURRENT_LIST_DIR}/splice_includes.cmake")
 file(GLOB shader_files "${SHADER_DIR}/*.glsl")
 list(SORT shader_files)
 set(text "// Generated from shaders/*.glsl by embed_shaders.cmake. Do not edit.\n#pragma once\n\nnamespace drape::gles::shaders {\n")
@@ -8,6 +10,7 @@ foreach(f IN LISTS shader_files)
   string(REPLACE ".glsl" "" ident "${name}")
   string(REPLACE "." "_" ident "${ident}")
   file(READ "${f}" body)
+  drape_splice_includes("${SHADER_DIR}" "${body}" body)
   string(APPEND text "inline constexpr const char* ${ident} = R\"drape_glsl(${body})drape_glsl\";\n")
 endforeach()
 string(APPEND text "}  // namespace drape::gles::shaders\n")

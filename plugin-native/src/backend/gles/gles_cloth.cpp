@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
 #include <set>
 
 #include <glm/geometric.hpp>
@@ -15,6 +16,7 @@
 #include "backend/gles/shaders.h"  // generated from shaders/*.glsl
 #include "backend/gles/sim_uniforms.h"  // generated from tools/abi/abi.py
 #include "core/params.h"
+#include "shaders/layout.h"
 
 namespace drape::gles {
 namespace {
@@ -280,7 +282,7 @@ const Limit kLimits[] = {
     {GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_COMPONENTS, "GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_COMPONENTS", 4},  // 4: a vec4
     {GL_MAX_TRANSFORM_FEEDBACK_INTERLEAVED_COMPONENTS, "GL_MAX_TRANSFORM_FEEDBACK_INTERLEAVED_COMPONENTS",
      64},  // 64: output records up to 256 bytes
-    {GL_MAX_VERTEX_UNIFORM_VECTORS, "GL_MAX_VERTEX_UNIFORM_VECTORS", kOwnUniformVectors + 4 * 5},  // 256: 4 colliders
+    {GL_MAX_VERTEX_UNIFORM_VECTORS, "GL_MAX_VERTEX_UNIFORM_VECTORS", kOwnUniformVectors + 4 * DRAPE_COLLIDER_VEC4},  // 256: 4 colliders
     {GL_MAX_VERTEX_UNIFORM_BLOCKS, "GL_MAX_VERTEX_UNIFORM_BLOCKS", 1},  // 12: DrapeSim
     {GL_MAX_UNIFORM_BLOCK_SIZE, "GL_MAX_UNIFORM_BLOCK_SIZE", GLint(sizeof(SimUniforms))},  // 16384
 };
@@ -987,10 +989,10 @@ uint32_t GlesCloth::build_shapes(uint32_t sub, uint32_t substeps) {
         const glm::vec3 pos1 = sub + 1 == substeps ? c.pos_end : c.pos_start + (c.pos_end - c.pos_start) * t1;
         const glm::quat rot0 = nlerp(c.rot_start, c.rot_end, t0);
         const glm::quat rot1 = sub + 1 == substeps ? c.rot_end : nlerp(c.rot_start, c.rot_end, t1);
-        const float rec[20] = {pos0.x, pos0.y, pos0.z, c.margin, pos1.x, pos1.y, pos1.z, c.friction,
+        const float rec[DRAPE_COLLIDER_VEC4 * 4] = {pos0.x, pos0.y, pos0.z, c.margin, pos1.x, pos1.y, pos1.z, c.friction,
                                rot0.x, rot0.y, rot0.z, rot0.w, rot1.x, rot1.y, rot1.z, rot1.w,
                                c.size.x, c.size.y, c.size.z, float(c.shape)};
-        shape_data_.insert(shape_data_.end(), rec, rec + 20);
+        shape_data_.insert(shape_data_.end(), std::begin(rec), std::end(rec));
     }
     return uint32_t(ix_.colliders.size());
 }
@@ -998,7 +1000,7 @@ uint32_t GlesCloth::build_shapes(uint32_t sub, uint32_t substeps) {
 void GlesCloth::run_interact(Program& p, int x, int d, int out_x, int out_d, bool drag, uint32_t shapes) {
     use_program(p, -1, -1);  // own records only: no texture
     if (shapes) {
-        glUniform4fv(p.u[uShapes], GLsizei(shapes * 5), shape_data_.data());
+        glUniform4fv(p.u[uShapes], GLsizei(shapes * DRAPE_COLLIDER_VEC4), shape_data_.data());
         glUniform1i(p.u[uShapeCount], GLint(shapes));
     }
     draw(vertex_array(x, d, drag ? kDragInput : 0u), out_x, out_d);
@@ -1059,9 +1061,9 @@ Result GlesCloth::gpu_step(float dt) {
     if (shape_count) {
         capacity = 4;
         while (capacity < shape_count) capacity *= 2;
-        if (kOwnUniformVectors + GLint(capacity * 5) > max_vertex_uniform_vectors_)
+        if (kOwnUniformVectors + GLint(capacity * DRAPE_COLLIDER_VEC4) > max_vertex_uniform_vectors_)
             return {DRAPE_ERROR_INVALID_ARGUMENT, std::to_string(shape_count) + " colliders need " +
-                                                      std::to_string(capacity * 5) + " uniform vectors; this GL offers " +
+                                                      std::to_string(capacity * DRAPE_COLLIDER_VEC4) + " uniform vectors; this GL offers " +
                                                       std::to_string(max_vertex_uniform_vectors_) + " to vertex shaders"};
     }
     if (shape_count || dragging) {

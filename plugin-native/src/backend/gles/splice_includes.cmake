@@ -1,0 +1,28 @@
+# GLSL ES has no #include: the embed step and the offline validation both call this to replace each
+# line `#include "<name>"` of a shader with shaders/<name> (recursively; a file already spliced is
+# not spliced again), so a header written in the common subset of C++ and GLSL is one source.
+function(drape_splice_includes dir text out_var)
+  set(rest "\n${text}")  # a leading newline: an include on the first line is a line start too
+  set(spliced "")
+  while(rest MATCHES "\n#include \"([^\"]+)\"")
+    set(name "${CMAKE_MATCH_1}")
+    set(line "\n#include \"${name}\"")
+    string(FIND "${rest}" "${line}" at)
+    string(SUBSTRING "${rest}" 0 ${at} before)
+    string(LENGTH "${line}" length)
+    math(EXPR at "${at} + ${length}")
+    string(SUBSTRING "${rest}" ${at} -1 after)
+    set(body "")
+    list(FIND spliced "${name}" seen)
+    if(seen EQUAL -1)
+      if(NOT EXISTS "${dir}/${name}")
+        message(FATAL_ERROR "${dir}: #include \"${name}\" names no file there")
+      endif()
+      file(READ "${dir}/${name}" body)
+      list(APPEND spliced "${name}")
+    endif()
+    set(rest "${before}\n${body}${after}")
+  endwhile()
+  string(SUBSTRING "${rest}" 1 -1 rest)
+  set(${out_var} "${rest}" PARENT_SCOPE)
+endfunction()

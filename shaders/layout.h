@@ -1,0 +1,29 @@
+// Records and constants that the C++ backends and the GLSL passes share, written once in the common
+// subset of C++ and GLSL (#define only). C++ includes this file; embed_shaders.cmake splices it into a
+// shader in place of its `#include "layout.h"` line (GLSL ES has no #include).
+#ifndef DRAPE_SHADERS_LAYOUT_H
+#define DRAPE_SHADERS_LAYOUT_H
+
+#ifdef GL_ES  // C++ has these from drape.h
+// GENERATED BEGIN ShaderEnums (tools/abi/generate.py from tools/abi/abi.py: do not edit)
+#define DRAPE_GROUP_STRUCTURAL 0
+#define DRAPE_GROUP_SHEAR 1
+#define DRAPE_GROUP_BEND 2
+#define DRAPE_GROUP_COUNT 3
+#define DRAPE_COLLIDER_SPHERE 0
+#define DRAPE_COLLIDER_CAPSULE 1
+#define DRAPE_COLLIDER_BOX 2
+#define DRAPE_COLLIDER_PLANE 3
+// GENERATED END ShaderEnums
+#endif
+
+// Collider record of one substep (kernels::CollideShape), DRAPE_COLLIDER_VEC4 vec4s per collider:
+// (pos0, margin), (pos1, friction), rot0 (x, y, z, w), rot1, (size, shape).
+#define DRAPE_COLLIDER_VEC4 5
+
+// Iterations of the swept (sphere-traced) entry search of the collision pass. Each advances by the
+// exact distance, so few are needed except for grazing motion, where a slightly late entry point
+// does no harm.
+#define DRAPE_SWEEP_ITERATIONS 16
+
+#endif
