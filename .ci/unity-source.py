@@ -166,7 +166,7 @@ def main():
     plain = [s for s in sources if not s.startswith(gles_dir)]
     gles = [s for s in sources if s.startswith(gles_dir)]
     # Quoted includes resolve in the library's own directories only (not the system's).
-    own = [d for d in manifest["include_dirs"] if os.path.normpath(d).startswith(root + os.sep)]
+    own = [d for d in manifest["include_dirs"] if (os.path.normpath(d) + os.sep).startswith(root + os.sep)]
     a = Amalgamator(root, own, manifest["dep_include_dirs"])
 
     version = "?"
