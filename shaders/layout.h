@@ -21,6 +21,13 @@
 // (pos0, margin), (pos1, friction), rot0 (x, y, z, w), rot1, (size, shape).
 #define DRAPE_COLLIDER_VEC4 5
 
+// Touch drag records (GlesCloth::drag, sim.vert.glsl drag_share): per drape_cloth_drag call a view of
+// DRAPE_DRAG_VIEW_VEC4 vec4s: projection * view * world (with the cloth's origin) in columns 0-3, its
+// inverse in 4-7, (viewport px, share of the offset applied in this substep, 0); per touch
+// DRAPE_TOUCH_VEC4 vec4s: (position px, motion px), (amplitude, sigma px^2, its call's view, 0).
+#define DRAPE_DRAG_VIEW_VEC4 9
+#define DRAPE_TOUCH_VEC4 2
+
 // Iterations of the swept (sphere-traced) entry search of the collision pass. Each advances by the
 // exact distance, so few are needed except for grazing motion, where a slightly late entry point
 // does no harm.

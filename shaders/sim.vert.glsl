@@ -23,12 +23,15 @@
 //                            the anchor's position from u_x; anchor index and length per particle
 //                            as attributes (uploaded when the tethers change)
 //   DRAPE_PASS_INTERACT      Cloth::interaction_substep after the solve (and tethers): touch drag
-//                            (DRAPE_DRAG: a_drag = this substep's share of the drag offset, first
-//                            substep only) then kernels::collide against DRAPE_SHAPES colliders
+//                            (DRAPE_DRAG: Cloth::drag_cpu_copy's offset, evaluated here from the
+//                            touches and views in uniforms, first substep only) then
+//                            kernels::collide against DRAPE_SHAPES colliders
 //                            (0: no collision code). Two outputs like MASS_SPRING: v_x, v_d
 //   DRAPE_PASS_MOVE          RigidMove (core/interaction.h) of the whole state: owner transform
 //                            (Cloth::move_state) and re-centring (Cloth::shift_origin: identity
 //                            rotation, to = -shift). Two outputs like MASS_SPRING: v_x, v_d
+//   DRAPE_DRAG_VIEWS         capacity of u_drag_views (drape_cloth_drag calls per step)
+//   DRAPE_MAX_TOUCHES        capacity of u_touches (touches per step)
 //   DRAPE_SHAPES             capacity of u_shapes (colliders, DRAPE_COLLIDER_VEC4 each: layout.h)
 //   DRAPE_DASHPOT            predict with PBD's explicit dashpots
 //   DRAPE_XPBD               constraint pass is XPBD (lambdas ride in the iterate record), else PBD
@@ -56,6 +59,12 @@
 #endif
 #ifndef DRAPE_RECORD
 #define DRAPE_RECORD 1
+#endif
+#ifndef DRAPE_DRAG_VIEWS
+#define DRAPE_DRAG_VIEWS 4
+#endif
+#ifndef DRAPE_MAX_TOUCHES
+#define DRAPE_MAX_TOUCHES 16
 #endif
 #ifndef DRAPE_SHAPES
 #define DRAPE_SHAPES 0
@@ -101,7 +110,11 @@ uniform float u_move_keep_velocity;
 in vec4 a_x;                        // own record: position x (MS, PREDICT) / displacement iterate
 in vec4 a_aux;                      // own: displacement d (MS, PREDICT, TETHER) or substep start x (CONSTRAINT)
 #ifdef DRAPE_DRAG
-in vec3 a_drag;                     // drag offset * (1 / substeps), zero for untouched particles
+// Touch drag (paper eq. 9) of the drape_cloth_drag calls since the last step (GlesCloth::drag),
+// records as layout.h says, touches in call order; the share is 1 / substeps.
+uniform vec4 u_drag_views[DRAPE_DRAG_VIEWS * DRAPE_DRAG_VIEW_VEC4];
+uniform vec4 u_touches[DRAPE_MAX_TOUCHES * DRAPE_TOUCH_VEC4];
+uniform int u_touch_count;
 #endif
 #if DRAPE_SHAPES > 0
 // kernels::CollideShape per collider (layout.h), interpolated for this substep on the CPU exactly
@@ -317,6 +330,39 @@ float shape_distance(int shape, vec3 size, vec3 p, out vec3 n) {
 }
 #endif
 
+#ifdef DRAPE_DRAG
+// Cloth::drag_cpu_copy at position x, times the share: per call, the touches' screen shifts add up
+// and are unprojected at x's depth. offset = from_screen(px + shift, z) - x, written as
+// w (D.xyz - x D.w) / (1 + w D.w) with D = inverse * (2 shift / viewport, 0, 0) and w = clip.w
+// (no cancellation between two unprojected points in float).
+vec3 drag_share(vec3 x) {
+    vec3 total = vec3(0.0);
+    int k = 0;
+    while (k < u_touch_count) {
+        int view = int(u_touches[DRAPE_TOUCH_VEC4 * k + 1].z);
+        int v = DRAPE_DRAG_VIEW_VEC4 * view;
+        mat4 mvp = mat4(u_drag_views[v], u_drag_views[v + 1], u_drag_views[v + 2], u_drag_views[v + 3]);
+        mat4 inv = mat4(u_drag_views[v + 4], u_drag_views[v + 5], u_drag_views[v + 6], u_drag_views[v + 7]);
+        vec4 screen = u_drag_views[v + 8];
+        vec4 clip = mvp * vec4(x, 1.0);
+        vec2 px = (clip.xy / clip.w * 0.5 + 0.5) * screen.xy;
+        vec2 shift = vec2(0.0);
+        for (; k < u_touch_count && int(u_touches[DRAPE_TOUCH_VEC4 * k + 1].z) == view; ++k) {
+            vec4 t0 = u_touches[DRAPE_TOUCH_VEC4 * k], t1 = u_touches[DRAPE_TOUCH_VEC4 * k + 1];
+            vec2 d = px - t0.xy;
+            shift += min(1.0, t1.x * exp(-dot(d, d) / (2.0 * t1.y))) * t0.zw;  // touch_weight
+        }
+        if (!(clip.w > 0.0) || (shift.x == 0.0 && shift.y == 0.0)) continue;  // at or behind the eye
+        vec4 dv = inv * vec4(shift * 2.0 / screen.xy, 0.0, 0.0);
+        vec3 offset = clip.w * (dv.xyz - x * dv.w) / (1.0 + clip.w * dv.w);
+        if (!isinf(offset.x) && !isinf(offset.y) && !isinf(offset.z) && !isnan(offset.x) && !isnan(offset.y) &&
+            !isnan(offset.z))
+            total += offset * screen.z;
+    }
+    return total;
+}
+#endif
+
 #ifdef DRAPE_KINEMATIC
 // Kinematic particles move along a straight line from their start to their target (Cloth::step
 // kinematic_at).
@@ -338,9 +384,11 @@ void main() {
     if (wi == 0.0) return;  // kinematic: goes where its pin says (no drag, no collision)
     vec3 dd = a_aux.xyz;
 #ifdef DRAPE_DRAG
-    // Cloth::interaction_substep, first substep: x and d move by the drag share
-    xi += a_drag;
-    dd += a_drag;
+    // CpuCloth::collide, first substep: x and d move by the drag share, from where the particle
+    // started the step (x - d: the drag is evaluated where drape_cloth_drag saw the cloth)
+    vec3 share = drag_share(xi - dd);
+    xi += share;
+    dd += share;
 #endif
 #if DRAPE_SHAPES > 0
     // kernels::collide

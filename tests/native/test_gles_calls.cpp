@@ -27,7 +27,7 @@ struct GlCalls {
         GlCalls c;
         c.total = n(nullptr);
         c.draws = n("glDrawArrays");
-        c.uniforms = n("glUniform1i") + n("glUniform3fv") + n("glUniform4fv");
+        c.uniforms = n("glUniform1i") + n("glUniform1f") + n("glUniform3fv") + n("glUniform4fv");
         // The loader has no glReadPixels or glGetBufferSubData: mapping is the only way to read.
         c.reads = n("glMapBufferRange");
         // Client memory enters GL only through these (table textures go through a staging buffer).
@@ -59,7 +59,7 @@ std::ostream& operator<<(std::ostream& os, const GlCalls& c) {
               << " attribute set-ups, " << c.uploads << " uploads, " << c.reads << " reads)";
 }
 
-enum class Extra { None, Tethers, CollidersAndTethers };
+enum class Extra { None, Tethers, CollidersAndTethers, DragAndTethers };
 
 struct BudgetCase {
     const char* name;
@@ -125,6 +125,20 @@ TEST_P(GlesCallBudget, SteadyFramesReadNothingUploadNothingAndCostAFixedNumberOf
             s.rotation[3] = 1.0f;
             ASSERT_DRAPE_OK(drape_cloth_set_colliders(c, &s, 1));
         }
+        if (bc.extra == Extra::DragAndTethers) {
+            // A finger dragging across the sheet every frame (orthographic identity view): the
+            // drag is evaluated on the GPU from uniforms, nothing read back or uploaded.
+            drape_view view{};
+            view.struct_size = sizeof view;
+            for (int k = 0; k < 16; k += 5) view.world[k] = view.view[k] = view.projection[k] = 1;
+            view.viewport[0] = view.viewport[1] = 200;
+            drape_touch t{};
+            ASSERT_DRAPE_OK(drape_touch_default(&t));
+            t.position[0] = 100.0f + float(f);
+            t.position[1] = 150.0f;
+            t.motion[0] = 1.0f;
+            ASSERT_DRAPE_OK(drape_cloth_drag(c, &view, &t, 1));
+        }
         ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
     };
     const int warm_up = 3, counted = 5;
@@ -137,7 +151,8 @@ TEST_P(GlesCallBudget, SteadyFramesReadNothingUploadNothingAndCostAFixedNumberOf
     uint64_t passes_per_substep = bc.model == DRAPE_MODEL_MASS_SPRING ? 1 : 1 + st.iterations;
     if (bc.extra != Extra::None) ++passes_per_substep;                  // tethers
     if (bc.extra == Extra::CollidersAndTethers) ++passes_per_substep;   // collisions
-    const uint64_t passes = st.substeps * passes_per_substep + 1;       // + the output pass
+    uint64_t passes = st.substeps * passes_per_substep + 1;             // + the output pass
+    if (bc.extra == Extra::DragAndTethers) ++passes;                    // drag: first substep
     std::cout << "[ gl calls ] " << bc.name << ", " << cols << "x" << rows << ", " << st.substeps << " substeps, "
               << passes << " passes per frame: " << per_frame << "\n";
 
@@ -165,7 +180,9 @@ INSTANTIATE_TEST_SUITE_P(
                       BudgetCase{"Pbd_Colliders", DRAPE_MODEL_PBD, Extra::CollidersAndTethers},
                       BudgetCase{"Xpbd", DRAPE_MODEL_XPBD, Extra::None},
                       BudgetCase{"Xpbd_Tethers", DRAPE_MODEL_XPBD, Extra::Tethers},
-                      BudgetCase{"Xpbd_Colliders", DRAPE_MODEL_XPBD, Extra::CollidersAndTethers}),
+                      BudgetCase{"Xpbd_Colliders", DRAPE_MODEL_XPBD, Extra::CollidersAndTethers},
+                      BudgetCase{"MassSpring_Drag", DRAPE_MODEL_MASS_SPRING, Extra::DragAndTethers},
+                      BudgetCase{"Xpbd_Drag", DRAPE_MODEL_XPBD, Extra::DragAndTethers}),
     [](const ::testing::TestParamInfo<BudgetCase>& info) { return std::string(info.param.name); });
 
 }  // namespace

@@ -1,8 +1,9 @@
 // GLES backend features beyond stepping, each against the CPU backend on the same scene: owner
-// transform (inertia, teleport). Headless Mesa (llvmpipe; softpipe by the softpipe preset).
+// transform (inertia, teleport), touch drag without readback. Headless Mesa (llvmpipe; softpipe by the softpipe preset).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "drape_test_util.h"
@@ -49,6 +50,38 @@ void expect_parity(float err, int step) {
     EXPECT_LE(err, 1e-3f * kExtent) << "step " << step;
 }
 
+// A perspective camera at `eye` looking down -z (OpenGL), 60 degree fov, 400 x 300 px; the world
+// matrix moves the cloth by (world_x, 0, 0).
+drape_view perspective_view(const float eye[3], float world_x) {
+    drape_view v{};
+    v.struct_size = sizeof v;
+    for (int k = 0; k < 16; k += 5) v.world[k] = v.view[k] = 1;
+    v.world[12] = world_x;
+    for (int k = 0; k < 3; ++k) v.view[12 + k] = -eye[k];
+    const float aspect = 400.0f / 300.0f, f = 1.0f / std::tan(0.5f * 1.0471976f), zn = 0.1f, zf = 100;
+    v.projection[0] = f / aspect;
+    v.projection[5] = f;
+    v.projection[10] = (zf + zn) / (zn - zf);
+    v.projection[11] = -1;
+    v.projection[14] = 2 * zf * zn / (zn - zf);
+    v.viewport[0] = 400;
+    v.viewport[1] = 300;
+    return v;
+}
+
+// Pixel position of a sim-space point through a view (the test's own projection, in double).
+void project(const drape_view& v, const float* p, float px[2]) {
+    auto mul = [](const float* m, const double* q, double* out) {
+        for (int r = 0; r < 4; ++r) out[r] = m[r] * q[0] + m[4 + r] * q[1] + m[8 + r] * q[2] + m[12 + r] * q[3];
+    };
+    double a[4] = {p[0], p[1], p[2], 1}, b[4], c[4];
+    mul(v.world, a, b);
+    mul(v.view, b, c);
+    mul(v.projection, c, a);
+    px[0] = float((a[0] / a[3] * 0.5 + 0.5) * v.viewport[0]);
+    px[1] = float((a[1] / a[3] * 0.5 + 0.5) * v.viewport[1]);
+}
+
 }  // namespace
 
 // The owner walks and turns (half its motion carried, half left to inertia), then jumps 50 m
@@ -82,6 +115,70 @@ TEST_P(GlesFeatures, OwnerTransformMatchesCpu) {
     }
     EXPECT_NEAR(teleported, 50.0f, 0.1f) << "the teleport did not move the cloth";
     std::printf("[ parity   ] owner transform, model %d: max |gles - cpu| = %.3g m over 20 steps\n", GetParam(), worst);
+}
+
+// Touch drag through two perspective views at once (two drape_cloth_drag calls of two touches each
+// before a step, every third step): the GLES cloth evaluates it on the GPU from the touches and
+// views, reading nothing back, and follows the CPU cloth, which evaluates it on its positions.
+TEST_P(GlesFeatures, DragWithoutReadbackMatchesCpu) {
+    WorldPtr w = make_world(1);
+    drape_cloth* cpu = sheet(w.get(), DRAPE_BACKEND_CPU, GetParam());
+    drape_cloth* gpu = sheet(w.get(), DRAPE_BACKEND_GLES, GetParam());
+    ASSERT_NE(gpu, nullptr);
+    drape_cloth* plain = sheet(w.get(), DRAPE_BACKEND_CPU, GetParam());
+    const float eye_a[3] = {0.5f, 1.8f, 1.5f}, eye_b[3] = {-0.5f, 2.5f, 0.5f};
+    const drape_view views[2] = {perspective_view(eye_a, 0.0f), perspective_view(eye_b, 0.1f)};
+    float worst = 0, moved = 0;
+    for (int s = 1; s <= 18; ++s) {
+        const uint64_t reads_before = drape_gl_call_count("glMapBufferRange");
+        if (s % 3 == 1) {
+            const std::vector<float> x = positions(cpu);  // where the fingers touch: the CPU cloth
+            const uint64_t reads_at_drag = drape_gl_call_count("glMapBufferRange");
+            for (int v = 0; v < 2; ++v) {
+                drape_touch t[2] = {};
+                for (int k = 0; k < 2; ++k) {
+                    ASSERT_DRAPE_OK(drape_touch_default(&t[k]));
+                    const size_t vertex = size_t(kRows / 2 + 3 * k) * kCols + kCols / 2 - 4 * v;
+                    project(views[v], &x[3 * vertex], t[k].position);
+                    t[k].motion[0] = 3.0f - 2.0f * float(v);
+                    t[k].motion[1] = 2.0f * float(k) - 1.0f;
+                }
+                for (drape_cloth* c : {cpu, gpu}) ASSERT_DRAPE_OK(drape_cloth_drag(c, &views[v], t, 2));
+            }
+            EXPECT_EQ(drape_gl_call_count("glMapBufferRange"), reads_at_drag) << "drape_cloth_drag read the GPU";
+        } else {
+            EXPECT_EQ(drape_gl_call_count("glMapBufferRange"), reads_before);
+        }
+        for (drape_cloth* c : {cpu, gpu, plain}) ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
+        const std::vector<float> xc = positions(cpu);
+        const float err = max_abs_diff(xc, positions(gpu));
+        worst = std::max(worst, err);
+        moved = std::max(moved, max_abs_diff(xc, positions(plain)));
+        expect_parity(err, s);
+    }
+    EXPECT_GT(moved, 0.01f) << "the drag did not act on the cloth";
+    std::printf("[ parity   ] drag through two perspective views, model %d: max |gles - cpu| = %.3g m over 18 steps "
+                "(the drag moved the cloth up to %.3g m)\n",
+                GetParam(), worst, moved);
+}
+
+// Between two steps a GLES cloth takes 4 drag calls and 16 touches (its shader's uniforms); more
+// is refused clearly, and the next step makes room again.
+TEST_P(GlesFeatures, DragCallsBetweenStepsAreBounded) {
+    WorldPtr w = make_world(1);
+    drape_cloth* gpu = sheet(w.get(), DRAPE_BACKEND_GLES, GetParam());
+    ASSERT_NE(gpu, nullptr);
+    const float eye[3] = {0.5f, 1.8f, 1.5f};
+    const drape_view view = perspective_view(eye, 0.0f);
+    drape_touch t[16] = {};
+    for (drape_touch& k : t) ASSERT_DRAPE_OK(drape_touch_default(&k));
+    for (int call = 0; call < 4; ++call) ASSERT_DRAPE_OK(drape_cloth_drag(gpu, &view, t, 2));
+    EXPECT_EQ(drape_cloth_drag(gpu, &view, t, 1), DRAPE_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(drape_last_error()).find("between two steps"), std::string::npos) << drape_last_error();
+    ASSERT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 60));
+    ASSERT_DRAPE_OK(drape_cloth_drag(gpu, &view, t, 16));
+    EXPECT_EQ(drape_cloth_drag(gpu, &view, t, 1), DRAPE_ERROR_INVALID_ARGUMENT);
+    ASSERT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 60));
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, GlesFeatures,

@@ -475,8 +475,11 @@ DRAPE_API drape_status drape_cloth_set_self_collision(drape_cloth* cloth, const 
 DRAPE_API drape_status drape_cloth_get_self_collision(const drape_cloth* cloth, drape_self_collision_desc* out_desc);
 
 /* ================================ 6. Interaction ============================================== */
-/* Touch drag runs on every backend (a GLES cloth reads its positions back once per
- * drape_cloth_drag). The owner transform runs on every backend (a GLES cloth moves its GPU state
+/* Touch drag runs on every backend. A GLES cloth reads nothing back for it: it keeps the touches
+ * and views and its next step's first collision pass evaluates the drag on the GPU, at the
+ * positions that step starts from (a CPU cloth: at the positions of the call; the same unless
+ * positions change in between); it takes at most 4 drape_cloth_drag calls with 16 touches in all
+ * between two steps (more: DRAPE_ERROR_INVALID_ARGUMENT). The owner transform runs on every backend (a GLES cloth moves its GPU state
  * by one transform-feedback pass per changed call, before its next step). Grabs are CPU-only: they
  * return DRAPE_ERROR_BACKEND_UNAVAILABLE for GLES cloths. Limits: 16 touches per drag call, 16 grabs
  * held at once, pick radius in (0, 1e4] px, screen positions within 1e6 px. */

@@ -879,7 +879,7 @@ drape_status drape_touch_default(drape_touch* out_touch) {
 }
 
 drape_status drape_cloth_drag(drape_cloth* cloth, const drape_view* view, const drape_touch* touches, uint32_t count) {
-    if (drape_status s = check_cloth(cloth)) return s;  // GLES too (reads the positions back)
+    if (drape_status s = check_cloth(cloth)) return s;  // GLES too (evaluated on the GPU)
     DRAPE_CHECK_STRUCT(view, drape_view);
     if (drape_status s = check_view(view)) return s;
     DRAPE_REQUIRE(touches != nullptr || count == 0, DRAPE_ERROR_NULL_POINTER, "touches is NULL");
@@ -892,14 +892,7 @@ drape_status drape_cloth_drag(drape_cloth* cloth, const drape_view* view, const 
         if (drape_status s = abi::Layout<drape_touch>::check(current[k], &problem))
             return fail(s, "touch " + std::to_string(k) + " " + problem);
     }
-    return guarded([&] {
-        // Drag reads the current positions (a GLES cloth reads them back first); copied for the
-        // render thread.
-        std::vector<drape_touch> copy(std::move(current));
-        const drape_view v = *view;
-        return apply_edit(as_cloth(cloth), Access::ReadsState,
-                          [copy, v](Cloth& c) { c.drag(v, copy.data(), uint32_t(copy.size())); });
-    });
+    return guarded([&] { return status_of(as_cloth(cloth)->drag(*view, std::move(current))); });
 }
 
 drape_status drape_cloth_grab(drape_cloth* cloth, const drape_view* view, uint32_t touch_id, const float position[2],

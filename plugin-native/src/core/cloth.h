@@ -93,7 +93,11 @@ public:
     bool asleep() const { return ix_.asleep; }
     /// True if these pins would move or newly pin a vertex (a reason to wake).
     bool pins_change(const drape_pin* pins, uint32_t count) const;
-    void drag(const drape_view& view, const drape_touch* touches, uint32_t count);
+    /// Touch drag for the next step (paper eq. 9): here through edit(), computed from the CPU copy
+    /// (drag_cpu_copy); a backend may evaluate it where its state lives.
+    virtual Result drag(const drape_view& view, std::vector<drape_touch> touches);
+    /// The drag offsets of these touches from the CPU copy's positions, for the next step.
+    void drag_cpu_copy(const drape_view& view, const drape_touch* touches, uint32_t count);
     /// Caller vertex grabbed, or UINT32_MAX if no free vertex lies within pick_radius px.
     uint32_t grab(const drape_view& view, uint32_t touch_id, const float position[2], float pick_radius);
     bool grab_move(const drape_view& view, uint32_t touch_id, const float position[2]);

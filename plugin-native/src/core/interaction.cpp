@@ -137,7 +137,13 @@ void Cloth::interaction_end_step(float dt, bool rolled_back) {
 
 // ---- touch drag and grabs ---------------------------------------------------------------------
 
-void Cloth::drag(const drape_view& view, const drape_touch* touches, uint32_t count) {
+Result Cloth::drag(const drape_view& view, std::vector<drape_touch> touches) {
+    return edit(Access::ReadsState, [view, t = std::move(touches)](Cloth& c) {
+        c.drag_cpu_copy(view, t.data(), uint32_t(t.size()));
+    });
+}
+
+void Cloth::drag_cpu_copy(const drape_view& view, const drape_touch* touches, uint32_t count) {
     const uint32_t n = topo_.particle_count;
     if (ix_.drag_offset.size() != n) {
         ix_.drag_offset.assign(n, glm::vec3(0.0f));

@@ -15,6 +15,7 @@
 
 #include "backend/gles/shaders.h"  // generated from shaders/*.glsl
 #include "backend/gles/sim_uniforms.h"  // generated from tools/abi/abi.py
+#include "core/drag.h"
 #include "core/params.h"
 #include "shaders/layout.h"
 
@@ -30,14 +31,17 @@ constexpr uint32_t kMaxLambdaVec4 = 8;
 enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3, kTether = 4, kInteract = 5, kMove = 6 };  // kCommit: last iteration
 // Uniforms outside the DrapeSim block (sim_uniforms.h): per substep, per collider set, per rigid
 // move. u_x / u_aux: the texture units of the pass's input buffers (see kNbrUnit).
-enum Uniform { uSubstep, uShapes, uShapeCount, uMoveRot, uMovePivot, uMoveTo, uMoveKeepVelocity, uX, uAux, kUniformCount };
-const char* const kUniformNames[kUniformCount] = {"u_substep",   "u_shapes",  "u_shape_count",
-                                                  "u_move_rot",  "u_move_pivot", "u_move_to",
-                                                  "u_move_keep_velocity", "u_x", "u_aux"};
+enum Uniform {
+    uSubstep, uShapes, uShapeCount, uDragViews, uTouches, uTouchCount, uMoveRot, uMovePivot, uMoveTo,
+    uMoveKeepVelocity, uX, uAux, kUniformCount
+};
+const char* const kUniformNames[kUniformCount] = {
+    "u_substep", "u_shapes",     "u_shape_count", "u_drag_views",         "u_touches", "u_touch_count",
+    "u_move_rot", "u_move_pivot", "u_move_to",     "u_move_keep_velocity", "u_x",       "u_aux"};
 static_assert(kUniformCount <= GlesCloth::kMaxUniforms, "GlesCloth::Program::u holds every location");
 // Attribute locations (bound before linking).
 enum Attrib {
-    aX = 0, aAux = 1, aKStart = 2, aKTarget = 3, aLambda0 = 4, aTetherAnchor = 12, aTetherLength = 13, aDrag = 14,
+    aX = 0, aAux = 1, aKStart = 2, aKTarget = 3, aLambda0 = 4, aTetherAnchor = 12, aTetherLength = 13,
     aParticle = 0, aKeep0 = 1
 };
 constexpr int kMaxAttribs = 16;
@@ -55,7 +59,6 @@ enum PassInputs : uint32_t {
     kIterateRecords = 1u << 4,   // x holds displacement-iterate records (+ XPBD lambdas)
     kKinematicInputs = 1u << 5,  // a_kstart, a_ktarget
     kTetherInputs = 1u << 6,     // a_tether_anchor, a_tether_length
-    kDragInput = 1u << 7,        // a_drag
 };
 
 std::atomic<bool> g_render_device{false};
@@ -86,8 +89,8 @@ void delete_now(GlObjects& o) {
     glDeleteTextures(4, o.textures);
     GLuint tex[3] = {o.nbr_tex, o.info_tex, o.tri_tex};
     glDeleteTextures(3, tex);
-    GLuint bufs[8] = {o.kstart, o.targets, o.vertex_to_particle, o.scratch, o.tethers, o.drag, o.uniforms, o.staging};
-    glDeleteBuffers(8, bufs);
+    GLuint bufs[7] = {o.kstart, o.targets, o.vertex_to_particle, o.scratch, o.tethers, o.uniforms, o.staging};
+    glDeleteBuffers(7, bufs);
     o.vaos.push_back(o.out_vao);
     glDeleteVertexArrays(GLsizei(o.vaos.size()), o.vaos.data());
     if (o.fbo) glDeleteFramebuffers(1, &o.fbo);
@@ -264,6 +267,8 @@ Result link(const std::string& vs_source, const char* name, const std::vector<st
 /// Uniform vectors of the simulation's own (u_substep, the DrapeSim block's share), generously;
 /// colliders add 5 each.
 constexpr GLint kOwnUniformVectors = 64;
+/// A touch drag's uniforms (sim.vert.glsl DRAPE_DRAG; records in layout.h).
+constexpr uint32_t kDragUniformVectors = GlesCloth::kMaxDragCalls * DRAPE_DRAG_VIEW_VEC4 + kMaxTouches * DRAPE_TOUCH_VEC4;
 
 /// The GL ES limits the backend relies on and what it needs of each, all within OpenGL ES 3.0's
 /// guaranteed minimums (after //). A device below one is refused when a cloth starts.
@@ -276,7 +281,7 @@ const Limit kLimits[] = {
     {GL_MAX_TEXTURE_SIZE, "GL_MAX_TEXTURE_SIZE", GLint(kTexWidth)},  // 2048: rows of kTexWidth texels
     {GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, "GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS", 4},  // 16: u_x, u_aux, u_nbr, u_info
     {GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, "GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS", kSetupUnit + 1},  // 32: units in use
-    {GL_MAX_VERTEX_ATTRIBS, "GL_MAX_VERTEX_ATTRIBS", kMaxAttribs},  // 16: locations up to aDrag; 1 + 15 kept chunks
+    {GL_MAX_VERTEX_ATTRIBS, "GL_MAX_VERTEX_ATTRIBS", kMaxAttribs},  // 16: locations up to aTetherLength; 1 + 15 kept chunks
     {GL_MAX_VERTEX_OUTPUT_COMPONENTS, "GL_MAX_VERTEX_OUTPUT_COMPONENTS", 64},  // 64: output records of 64 words
     {GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_ATTRIBS, "GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_ATTRIBS", 2},  // 4: v_x, v_d
     {GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_COMPONENTS, "GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_COMPONENTS", 4},  // 4: a vec4
@@ -466,7 +471,6 @@ Result GlesCloth::ensure_gl() {
     glGenBuffers(1, &gl_.vertex_to_particle);
     glGenBuffers(1, &gl_.kstart);
     glGenBuffers(1, &gl_.tethers);
-    glGenBuffers(1, &gl_.drag);
     glGenBuffers(1, &gl_.uniforms);
     glBindBuffer(GL_UNIFORM_BUFFER, gl_.uniforms);
     glBufferData(GL_UNIFORM_BUFFER, sizeof(SimUniforms), nullptr, GL_DYNAMIC_DRAW);
@@ -670,11 +674,6 @@ GLuint GlesCloth::vertex_array(int x, int aux, uint32_t inputs) {
         glEnableVertexAttribArray(aTetherLength);
         glVertexAttribPointer(aTetherLength, 1, GL_FLOAT, GL_FALSE, 8, reinterpret_cast<const void*>(size_t(4)));
     }
-    if (inputs & kDragInput) {
-        glBindBuffer(GL_ARRAY_BUFFER, gl_.drag);
-        glEnableVertexAttribArray(aDrag);
-        glVertexAttribPointer(aDrag, 3, GL_FLOAT, GL_FALSE, 12, nullptr);
-    }
     gl_.vaos.push_back(vao);
     vaos_.emplace(key, vao);
     return vao;
@@ -795,7 +794,11 @@ const std::string& GlesCloth::variant_defines(int pass) const {
     if (pass == kMove) d += "#define DRAPE_PASS_MOVE 1\n";
     if (pass == kInteract) {
         d += "#define DRAPE_PASS_INTERACT 1\n";
-        if (drag_variant_) d += "#define DRAPE_DRAG 1\n";
+        if (drag_variant_) {
+            d += "#define DRAPE_DRAG 1\n";
+            define("DRAPE_DRAG_VIEWS", long(kMaxDragCalls));
+            define("DRAPE_MAX_TOUCHES", long(kMaxTouches));
+        }
         define("DRAPE_SHAPES", long(shape_capacity_));
     }
     if (pass == kPredict && predict_has_dashpot()) d += "#define DRAPE_DASHPOT 1\n";
@@ -828,7 +831,6 @@ Result GlesCloth::program(int pass, Program** out) {
         for (uint32_t k = 0; k < kMaxLambdaVec4; ++k) attribs.push_back({aLambda0 + k, lambda_names[k]});
         attribs.push_back({aTetherAnchor, "a_tether_anchor"});
         attribs.push_back({aTetherLength, "a_tether_length"});
-        attribs.push_back({aDrag, "a_drag"});
         Program p;
         if (Result r = link(with_defines(shaders::sim_vert, defines), "sim.vert.glsl", varyings,
                             two_outputs ? GL_SEPARATE_ATTRIBS : GL_INTERLEAVED_ATTRIBS, attribs, &p.id);
@@ -1003,11 +1005,47 @@ void GlesCloth::run_interact(Program& p, int x, int d, int out_x, int out_d, boo
         glUniform4fv(p.u[uShapes], GLsizei(shapes * DRAPE_COLLIDER_VEC4), shape_data_.data());
         glUniform1i(p.u[uShapeCount], GLint(shapes));
     }
-    draw(vertex_array(x, d, drag ? kDragInput : 0u), out_x, out_d);
+    if (drag) {
+        glUniform4fv(p.u[uDragViews], GLsizei(drag_views_.size()), &drag_views_[0].x);
+        glUniform4fv(p.u[uTouches], GLsizei(drag_touches_.size()), &drag_touches_[0].x);
+        glUniform1i(p.u[uTouchCount], GLint(drag_touches_.size() / DRAPE_TOUCH_VEC4));
+    }
+    draw(vertex_array(x, d, 0), out_x, out_d);
+}
+
+Result GlesCloth::drag(const drape_view& view, std::vector<drape_touch> touches) {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (drag_calls_recorded_ + 1 > kMaxDragCalls || drag_touches_recorded_ + touches.size() > kMaxTouches)
+            return {DRAPE_ERROR_INVALID_ARGUMENT,
+                    "a GLES cloth takes at most " + std::to_string(kMaxDragCalls) + " drape_cloth_drag calls with " +
+                        std::to_string(kMaxTouches) + " touches in all between two steps (the drag runs on the GPU)"};
+        ++drag_calls_recorded_;
+        drag_touches_recorded_ += uint32_t(touches.size());
+    }
+    return edit(Access::NoState, [this, view, t = std::move(touches)](Cloth&) {
+        if (t.empty() || drag_views_.size() / DRAPE_DRAG_VIEW_VEC4 >= kMaxDragCalls ||
+            drag_touches_.size() / DRAPE_TOUCH_VEC4 + t.size() > kMaxTouches)
+            return;  // full only if a step failed before using them
+        // The mapping takes local coordinates: the cloth's origin as it is when this is applied.
+        const ScreenMapping m = make_screen_mapping(view, origin_);
+        const float slot = float(drag_views_.size() / DRAPE_DRAG_VIEW_VEC4);  // records as layout.h says
+        for (int c = 0; c < 4; ++c) drag_views_.push_back(glm::vec4(m.mvp[c]));
+        for (int c = 0; c < 4; ++c) drag_views_.push_back(glm::vec4(m.inv_mvp[c]));
+        drag_views_.push_back(glm::vec4(float(m.viewport.x), float(m.viewport.y), 0.0f, 0.0f));  // z: share, set by the step
+        bool moves = false;
+        for (const drape_touch& k : t) {
+            drag_touches_.push_back(glm::vec4(k.position[0], k.position[1], k.motion[0], k.motion[1]));
+            drag_touches_.push_back(glm::vec4(k.amplitude, k.sigma, slot, 0.0f));
+            moves = moves || ((k.motion[0] != 0.0f || k.motion[1] != 0.0f) && k.amplitude > 0.0f);
+        }
+        if (moves) wake();
+    });
 }
 
 Result GlesCloth::step(float dt) {
     std::lock_guard<std::mutex> lock(mutex_);
+    drag_calls_recorded_ = drag_touches_recorded_ = 0;  // the step recorded now takes them
     if (mode_ == Mode::RenderThread) {
         Result r = deferred_error_;
         deferred_error_ = {};
@@ -1056,14 +1094,16 @@ Result GlesCloth::gpu_step(float dt) {
     // Variants: DRAPE_SHAPES = collider capacity (power of two >= 4, 0 without colliders).
     Program *p_interact_first = nullptr, *p_interact = nullptr;
     const uint32_t shape_count = uint32_t(ix_.colliders.size());
-    const bool dragging = !ix_.drag_particles.empty();
+    const bool dragging = !drag_views_.empty();
     uint32_t capacity = 0;
     if (shape_count) {
         capacity = 4;
         while (capacity < shape_count) capacity *= 2;
-        if (kOwnUniformVectors + GLint(capacity * DRAPE_COLLIDER_VEC4) > max_vertex_uniform_vectors_)
+        const GLint drag_vectors = dragging ? GLint(kDragUniformVectors) : 0;
+        if (kOwnUniformVectors + drag_vectors + GLint(capacity * DRAPE_COLLIDER_VEC4) > max_vertex_uniform_vectors_)
             return {DRAPE_ERROR_INVALID_ARGUMENT, std::to_string(shape_count) + " colliders need " +
-                                                      std::to_string(capacity * DRAPE_COLLIDER_VEC4) + " uniform vectors; this GL offers " +
+                                                      std::to_string(capacity * DRAPE_COLLIDER_VEC4) + " uniform vectors (and a touch drag " +
+                                                      std::to_string(drag_vectors) + "); this GL offers " +
                                                       std::to_string(max_vertex_uniform_vectors_) + " to vertex shaders"};
     }
     if (shape_count || dragging) {
@@ -1097,15 +1137,9 @@ Result GlesCloth::gpu_step(float dt) {
         glBindBuffer(GL_COPY_WRITE_BUFFER, gl_.kstart);
         glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, GLsizeiptr(size_t(n) * sizeof(Particle)));
     }
-    if (dragging) {
-        // This step's drag share per particle (CpuCloth::collide: offset / substeps).
-        const float part = 1.0f / float(substeps);
-        drag_share_.assign(n, glm::vec3(0.0f));
-        for (uint32_t i : ix_.drag_particles) drag_share_[i] = ix_.drag_offset[i] * part;
-        glBindBuffer(GL_ARRAY_BUFFER, gl_.drag);
-        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n * sizeof(glm::vec3)), drag_share_.data(), GL_STREAM_DRAW);
-        glBindBuffer(GL_ARRAY_BUFFER, 0);
-    }
+    // The drag's share in the first substep (CpuCloth::collide: offset / substeps), per view.
+    for (size_t v = DRAPE_DRAG_VIEW_VEC4 - 1; v < drag_views_.size(); v += DRAPE_DRAG_VIEW_VEC4)
+        drag_views_[v].z = 1.0f / float(substeps);
     use_uniforms(h);
     // Buffer roles as CpuCloth::solve: cur (positions x), disp (displacements d), spare, spare2.
     int& cur = g_[0];
@@ -1158,7 +1192,9 @@ Result GlesCloth::gpu_step(float dt) {
         fresh_ = false;
     }
     gpu_newer_ = true;
-    interaction_end_step(dt, false);  // colliders advance, drag consumed (sleep is CPU-only)
+    drag_views_.clear();
+    drag_touches_.clear();
+    interaction_end_step(dt, false);  // colliders advance (sleep is CPU-only)
     // Re-centre as CpuCloth::step does, without reading back: kinematic particles end the step on
     // their targets, which the CPU holds; a cloth without any decides from its last read-back copy
     // (shifted along with the state, so it stays consistent).

@@ -60,7 +60,7 @@ struct GlObjects {
     GLuint buffers[4] = {};
     GLuint textures[4] = {};
     GLuint nbr_tex = 0, info_tex = 0, tri_tex = 0;
-    GLuint kstart = 0, targets = 0, vertex_to_particle = 0, scratch = 0, tethers = 0, drag = 0;
+    GLuint kstart = 0, targets = 0, vertex_to_particle = 0, scratch = 0, tethers = 0;
     GLuint uniforms = 0;  ///< the DrapeSim uniform block (SimUniforms)
     GLuint staging = 0;   ///< pixel-unpack buffer that table textures are uploaded through
     GLuint out_vao = 0;   ///< the output pass's inputs
@@ -98,6 +98,11 @@ public:
     /// Explicit readback: copies the GPU state into the CPU copy (RenderThread: at the next event).
     Result readback() override;
     Result supports(Feature feature) const override;
+    /// Records the touches (and the view, in the cloth's frame when applied) for the next step's
+    /// first interaction pass, which evaluates the drag on the GPU: no readback. At most
+    /// kMaxDragCalls calls and kMaxTouches touches between two steps.
+    Result drag(const drape_view& view, std::vector<drape_touch> touches) override;
+    static constexpr uint32_t kMaxDragCalls = 4;
     /// GL work needs the caller's context: stepped on the thread that steps the world.
     bool steps_on_pool_thread() const override { return false; }
 
@@ -164,7 +169,7 @@ private:
     /// kernels::tether: reads state buffers x and d, writes them to out_x and out_d.
     void run_tether(Program& p, int x, int d, int out_x, int out_d);
     bool has_tethers() const { return params_.max_stretch > 0 && !kinematic_.empty(); }
-    /// CpuCloth::collide: drag share (first substep, `drag`) and colliders (shape_data_,
+    /// CpuCloth::collide: drag share (first substep, `drag`: drag_views_, drag_touches_) and colliders (shape_data_,
     /// `shapes` of them) on x and d, written to out_x and out_d.
     void run_interact(Program& p, int x, int d, int out_x, int out_d, bool drag, uint32_t shapes);
     /// Colliders of substep `sub` as CpuCloth::collide builds them (no broad phase: the
@@ -218,7 +223,11 @@ private:
     bool drag_variant_ = false;    // DRAPE_DRAG of the interaction program being asked for
     std::vector<float> shape_data_;
     std::vector<RigidMove> gpu_moves_;  // owner moves the GPU state has not had yet (in order)
-    std::vector<glm::vec3> drag_share_;
+    // Drag of the calls since the last step, as the shader's u_drag_views / u_touches (records in
+    // shaders/layout.h); consumed by the next step. The counts as recorded by drag() on
+    // the calling thread (reset when a step is recorded) bound them.
+    std::vector<glm::vec4> drag_views_, drag_touches_;
+    uint32_t drag_calls_recorded_ = 0, drag_touches_recorded_ = 0;
 };
 
 }  // namespace drape::gles
