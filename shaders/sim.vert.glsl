@@ -291,43 +291,7 @@ vec4 conjugate(vec4 q) { return vec4(-q.xyz, q.w); }
 #endif
 
 #if DRAPE_SHAPES > 0
-
-// kernels::shape_distance (collide.h): signed distance and outward normal in the local frame.
-float shape_distance(int shape, vec3 size, vec3 p, out vec3 n) {
-    if (shape == DRAPE_COLLIDER_SPHERE) {
-        float len = sqrt(dot(p, p));
-        n = len > 0.0 ? p / len : vec3(0.0, 1.0, 0.0);
-        return len - size.x;
-    }
-    if (shape == DRAPE_COLLIDER_CAPSULE) {
-        vec3 q = vec3(p.x, p.y - max(-size.y, min(size.y, p.y)), p.z);
-        float len = sqrt(dot(q, q));
-        n = len > 0.0 ? q / len : vec3(1.0, 0.0, 0.0);
-        return len - size.x;
-    }
-    if (shape == DRAPE_COLLIDER_BOX) {
-        vec3 q = abs(p) - size;
-        vec3 s = vec3(p.x < 0.0 ? -1.0 : 1.0, p.y < 0.0 ? -1.0 : 1.0, p.z < 0.0 ? -1.0 : 1.0);
-        if (q.x > 0.0 || q.y > 0.0 || q.z > 0.0) {
-            vec3 o = max(q, vec3(0.0));
-            float len = sqrt(dot(o, o));
-            n = s * o / len;
-            return len;
-        }
-        if (q.x >= q.y && q.x >= q.z) {
-            n = vec3(s.x, 0.0, 0.0);
-            return q.x;
-        }
-        if (q.y >= q.z) {
-            n = vec3(0.0, s.y, 0.0);
-            return q.y;
-        }
-        n = vec3(0.0, 0.0, s.z);
-        return q.z;
-    }
-    n = vec3(0.0, 1.0, 0.0);  // DRAPE_COLLIDER_PLANE
-    return p.y;
-}
+#include "collide_shape.h"  // shape_distance, collide_local: the CPU's collision maths
 #endif
 
 #ifdef DRAPE_DRAG
@@ -398,67 +362,10 @@ void main() {
         int r = DRAPE_COLLIDER_VEC4 * k;
         vec4 c0 = u_shapes[r], c1 = u_shapes[r + 1], rot0 = u_shapes[r + 2], rot1 = u_shapes[r + 3];
         vec4 c4 = u_shapes[r + 4];
-        vec3 size = c4.xyz;
-        int shape = int(c4.w);
-        float margin = c0.w;
-        vec3 p1 = rotate(conjugate(rot1), xi - c1.xyz);
-        vec3 n1;
-        float d1 = shape_distance(shape, size, p1, n1) - margin;
         vec3 p0 = rotate(conjugate(rot0), si - c0.xyz);
-        vec3 seg = p1 - p0;
-        float len = sqrt(dot(seg, seg));
-        if (d1 >= 0.0 && len <= d1) continue;  // cannot have touched the shape this substep
-        vec3 n0;
-        float d0 = shape_distance(shape, size, p0, n0) - margin;
-        vec3 q = p1;
-        vec3 n = n1;
-        bool contact = false;
-        bool entered = false;
-        vec3 h = vec3(0.0);
-        if (d0 > 0.0) {
-            if (len > d0) {
-                float t = 0.0, d = d0;
-                vec3 dir = seg / len;
-                vec3 nh = n0;
-                for (int it = 0; it < DRAPE_SWEEP_ITERATIONS && d > 1e-6 && t < len; ++it) {
-                    t += d;
-                    if (t >= len) break;
-                    d = shape_distance(shape, size, p0 + dir * t, nh) - margin;
-                }
-                if (t < len) {
-                    entered = true;
-                    h = p0 + dir * t;
-                    n = nh;
-                }
-            }
-        } else {
-            h = p0 - d0 * n0;
-            entered = dot(p1 - h, n0) < 0.0;
-            if (entered) n = n0;
-        }
-        if (entered) {
-            q = p1 + max(0.0, -dot(p1 - h, n)) * n;
-            vec3 nq;
-            float dq = shape_distance(shape, size, q, nq) - margin;
-            if (dq < 0.0) q = dot(nq, n) > 0.0 ? q - dq * nq : h;
-            contact = true;
-        } else if (d1 < 0.0) {
-            q = p1 - d1 * n1;
-            contact = true;
-        }
-        if (!contact) continue;
-        float friction = c1.w;
-        if (friction > 0.0) {
-            vec3 pen = q - p1;
-            float depth = sqrt(dot(pen, pen));
-            vec3 rel = q - p0;
-            vec3 tangential = rel - dot(rel, n) * n;
-            float tl = sqrt(dot(tangential, tangential));
-            float limit = friction * depth;
-            if (tl <= limit) q -= tangential;
-            else q -= tangential * (limit / tl);
-        }
-        xi = rotate(rot1, q) + c1.xyz;
+        vec3 p1 = rotate(conjugate(rot1), xi - c1.xyz);
+        vec3 q;
+        if (collide_local(int(c4.w), c4.xyz, c0.w, c1.w, p0, p1, q)) xi = rotate(rot1, q) + c1.xyz;
     }
     dd += xi - x_in;
 #endif
