@@ -163,7 +163,7 @@ INSTANTIATE_TEST_SUITE_P(
 // cloth size per step over the first kStrictSteps steps, 1e-3 over the run). The GLES backend
 // tests every collider (no broad phase: the bounds are on the GPU); the colliders here touch the
 // cloth, so the CPU's broad phase keeps them too and both run the same narrow phase.
-enum class Interact { Sphere, Box, Drag };
+enum class Interact { Sphere, Capsule, Box, Plane, Drag };
 
 struct InteractCase {
     const char* name;
@@ -194,7 +194,8 @@ TEST_P(GlesInteractParity, MatchesCpuEveryStep) {
         pin_corners(c, cols);
     }
     // Colliders under the sheet (the sheet spans x in [0, 1], z in [-1, 0] at y = 1 and swings
-    // down): a sphere rising into it, or a tilted box sliding under it, both with friction.
+    // down), each with friction: a sphere rising into it, a capsule lying along x rising into it, a
+    // tilted box sliding under it, or a tilted floor rising into it.
     auto colliders = [&](int s) {
         drape_collider c{};
         c.struct_size = sizeof c;
@@ -208,6 +209,20 @@ TEST_P(GlesInteractParity, MatchesCpuEveryStep) {
             c.position[0] = 0.5f;
             c.position[1] = 0.45f + 0.01f * float(s);
             c.position[2] = -0.4f;
+        } else if (ic.what == Interact::Capsule) {
+            c.shape = DRAPE_COLLIDER_CAPSULE;
+            c.size[0] = 0.12f;
+            c.size[1] = 0.3f;
+            c.position[0] = 0.5f;
+            c.position[1] = 0.55f + 0.01f * float(s);
+            c.position[2] = -0.5f;
+            c.rotation[2] = std::sqrt(0.5f);  // 90 degrees about z: its axis along x
+            c.rotation[3] = std::sqrt(0.5f);
+        } else if (ic.what == Interact::Plane) {
+            c.shape = DRAPE_COLLIDER_PLANE;
+            c.position[1] = 0.6f + 0.005f * float(s);
+            c.rotation[0] = std::sin(0.05f);  // 0.1 rad about x
+            c.rotation[3] = std::cos(0.05f);
         } else {
             c.shape = DRAPE_COLLIDER_BOX;
             c.size[0] = 0.3f;
@@ -277,6 +292,8 @@ INSTANTIATE_TEST_SUITE_P(
     Interaction, GlesInteractParity,
     ::testing::Values(InteractCase{"Xpbd_Sphere", DRAPE_MODEL_XPBD, Interact::Sphere},
                       InteractCase{"Xpbd_Box", DRAPE_MODEL_XPBD, Interact::Box},
+                      InteractCase{"Xpbd_Capsule", DRAPE_MODEL_XPBD, Interact::Capsule},
+                      InteractCase{"Xpbd_Plane", DRAPE_MODEL_XPBD, Interact::Plane},
                       InteractCase{"MassSpring_Sphere", DRAPE_MODEL_MASS_SPRING, Interact::Sphere},
                       InteractCase{"Pbd_Box", DRAPE_MODEL_PBD, Interact::Box},
                       InteractCase{"Xpbd_Drag", DRAPE_MODEL_XPBD, Interact::Drag},
