@@ -141,10 +141,10 @@ STRUCTS = [
                field("air_drag", "f32", "a += air_drag*(wind - v)", unit="1/s", default=0.1, range=(0, 1000)),
                field("substeps", "u32",
                      "per step; 0 = automatic (MASS_SPRING: from the stability bound, see drape_estimate_stability; "
-                     "PBD, XPBD: 16 \"small steps\"; IMPLICIT: 4). Automatic or given, at most DRAPE_MAX_SUBSTEPS",
+                     "PBD, XPBD: 16 \"small steps\"; IMPLICIT: 2). Automatic or given, at most DRAPE_MAX_SUBSTEPS",
                      default=0, range=(0, "DRAPE_MAX_SUBSTEPS")),
-               field("iterations", "u32", "solver iterations per substep (PBD, XPBD, IMPLICIT); 0 = automatic "
-                     "(IMPLICIT: 4, PBD and XPBD: 1)", default=0, range=(0, "DRAPE_MAX_ITERATIONS")),
+               field("iterations", "u32", "solver iterations per substep (PBD, XPBD, IMPLICIT; IMPLICIT: at most, "
+                     "fewer once converged); 0 = automatic (IMPLICIT: 4, PBD and XPBD: 1)", default=0, range=(0, "DRAPE_MAX_ITERATIONS")),
                field("max_stretch", "f32",
                      "tethers (long-range attachments, Kim et al. 2012): every particle stays within "
                      "(1 + max_stretch) x its rest distance along the cloth to the nearest pinned particle. "
@@ -181,7 +181,8 @@ STRUCTS = [
     struct("drape_stats", "Stats", "Describes the last step.", direction="out", fields=[
         field("step_ms", "f32", "wall time of the last step", unit="ms"),
         field("substeps", "u32", "substeps used by the last step"),
-        field("iterations", "u32", "iterations per substep used by the last step"),
+        field("iterations", "u32", "iterations per substep used by the last step (IMPLICIT: the most any "
+              "substep took)"),
         field("max_strain", "f32", "max over structural+shear springs of |l/L0 - 1|"),
         field("rms_strain", "f32", ""),
         field("kinetic_energy", "f32", "", unit="J"),

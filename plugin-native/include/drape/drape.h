@@ -270,10 +270,11 @@ typedef struct drape_params {
     float wind[3]; /**< m/s, air velocity. Length <= 10000. Default (0, 0, 0) */
     float air_drag; /**< 1/s, a += air_drag*(wind - v). Range [0, 1000]. Default 0.1 */
     uint32_t substeps; /**< per step; 0 = automatic (MASS_SPRING: from the stability bound, see
-                            drape_estimate_stability; PBD, XPBD: 16 "small steps"; IMPLICIT: 4). Automatic or
+                            drape_estimate_stability; PBD, XPBD: 16 "small steps"; IMPLICIT: 2). Automatic or
                             given, at most DRAPE_MAX_SUBSTEPS. Range [0, DRAPE_MAX_SUBSTEPS]. Default 0 */
-    uint32_t iterations; /**< solver iterations per substep (PBD, XPBD, IMPLICIT); 0 = automatic (IMPLICIT: 4,
-                              PBD and XPBD: 1). Range [0, DRAPE_MAX_ITERATIONS]. Default 0 */
+    uint32_t iterations; /**< solver iterations per substep (PBD, XPBD, IMPLICIT; IMPLICIT: at most, fewer
+                              once converged); 0 = automatic (IMPLICIT: 4, PBD and XPBD: 1). Range [0,
+                              DRAPE_MAX_ITERATIONS]. Default 0 */
     float max_stretch; /**< tethers (long-range attachments, Kim et al. 2012): every particle stays within (1
                             + max_stretch) x its rest distance along the cloth to the nearest pinned particle.
                             Fraction; 0 = off. Range [0, 100]. Default 0.1 */
@@ -378,7 +379,8 @@ typedef struct drape_stats {
     uint32_t struct_size;
     float step_ms; /**< ms, wall time of the last step */
     uint32_t substeps; /**< substeps used by the last step */
-    uint32_t iterations; /**< iterations per substep used by the last step */
+    uint32_t iterations; /**< iterations per substep used by the last step (IMPLICIT: the most any substep
+                              took) */
     float max_strain; /**< max over structural+shear springs of |l/L0 - 1| */
     float rms_strain;
     float kinetic_energy; /**< J */

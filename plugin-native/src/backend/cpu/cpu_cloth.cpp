@@ -52,8 +52,9 @@ void CpuCloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& k
     for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_predict(c, cur, disp, target, iterate, b, e); });
     for (uint32_t k : kinematic_) target[k] = iterate[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
     if (!(std::fabs(implicit_.h() / c.h - 1.0f) < kImplicitRefactor)) factor_implicit(c.h);  // dt changed a lot
-    implicit_.solve(c, cur, target, iterate, iterations_for(),
-                    backend_ == DRAPE_BACKEND_CPU_THREADED ? &world_.pool() : nullptr);
+    const uint32_t taken = implicit_.solve(c, cur, target, iterate, iterations_, kImplicitTolerance,
+                                           backend_ == DRAPE_BACKEND_CPU_THREADED ? &world_.pool() : nullptr);
+    implicit_iterations_ = std::max(implicit_iterations_, taken);
     // Commit: positions start + d into the old displacement buffer, d becomes the state.
     for_particles([&](uint32_t b, uint32_t e) {
         for (uint32_t i = b; i < e; ++i) disp[i] = Particle(glm::vec3(cur[i]) + glm::vec3(iterate[i]), cur[i].w);
@@ -103,6 +104,7 @@ void CpuCloth::begin(float dt) {
     substeps_ = substeps_for(dt);
     h_ = dt / float(substeps_);
     iterations_ = iterations_for();
+    implicit_iterations_ = 0;
     last_h_ = h_;
     std::memcpy(backup_x_.data(), x_.data(), n * sizeof(Particle));
     std::memcpy(backup_d_.data(), d_.data(), n * sizeof(Particle));
@@ -278,7 +280,9 @@ Result CpuCloth::finish(float dt, const VerifyPartial& total) {
     // Statistics; on failure the state from before the step comes back, else the step commits.
     const uint32_t n = topo_.particle_count;
     stats_.substeps = substeps_;
-    stats_.iterations = params_.model == DRAPE_MODEL_MASS_SPRING ? 1 : iterations_;
+    stats_.iterations = params_.model == DRAPE_MODEL_MASS_SPRING ? 1
+                        : params_.model == DRAPE_MODEL_IMPLICIT ? implicit_iterations_
+                                                                : iterations_;
     const bool runaway = !(total.max_strain_all <= kRunawayStrain);
     stats_.non_finite = total.finite ? 0 : 1;
     if (!total.finite || runaway) {

@@ -67,6 +67,7 @@ private:
     float* profile_ = nullptr;  ///< stats_.stage_ms while the world profiles stages, else nullptr
     kernels::SubstepContext ctx_{};
     uint32_t substeps_ = 0, iterations_ = 0;
+    uint32_t implicit_iterations_ = 0;  ///< IMPLICIT: most iterations a substep took (it stops when converged)
     float h_ = 0;  ///< substep, s
 
     // Scratch buffers (their roles rotate with x_ and d_).

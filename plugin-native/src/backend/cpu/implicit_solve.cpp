@@ -164,83 +164,115 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
                          row_col_.begin());
     y_.resize(m);
     sep_sum_.resize(size_t(sep_count) * kParts);
-    for (std::vector<Particle>* v : {&r_, &r_prev_, &z_, &p_, &q_}) v->assign(n, Particle(0.0f));
+    for (std::vector<Particle>* v : {&r_, &r_prev_, &z_, &p_}) v->assign(n, Particle(0.0f));
+    block_sum_.assign((n + kBlock - 1) / kBlock, 0.0);
     h_ = h;
 }
 
-namespace {
-
-/// sum_i a_i . b_i over the xyz of n records, in double and in index order (the same bits for any
-/// thread count).
-double dot(const std::vector<kernels::Particle>& a, const std::vector<kernels::Particle>& b) {
+template <class Fn>
+double ImplicitSolve::over_blocks(ThreadPool* pool, Fn&& fn) {
+    const uint32_t n = uint32_t(r_.size()), blocks = uint32_t(block_sum_.size());
+    auto run = [&](uint32_t first, uint32_t last) {
+        for (uint32_t b = first; b < last; ++b) block_sum_[b] = fn(b * kBlock, std::min(n, (b + 1) * kBlock));
+    };
+    if (pool && pool->size() > 1 && n >= ThreadPool::kMinParallelCount) {
+        const uint32_t threads = pool->size();
+        pool->run_on_all([&](uint32_t t) { run(blocks * t / threads, blocks * (t + 1) / threads); });
+    } else {
+        run(0, blocks);
+    }
     double sum = 0;
-    for (size_t i = 0; i < a.size(); ++i) sum += double(glm::dot(glm::vec3(a[i]), glm::vec3(b[i])));
+    for (double s : block_sum_) sum += s;
     return sum;
 }
 
-}  // namespace
-
-void ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* start, const Particle* target,
-                          Particle* iterate, uint32_t iterations, ThreadPool* pool) {
-    const uint32_t n = uint32_t(r_.size());
-    auto each = [&](auto&& fn) {
-        if (pool)
-            pool->parallel_for(n, fn);
-        else
-            fn(0u, n);
-    };
-    auto residual = [&] {
-        each([&](uint32_t b, uint32_t e) {
-            kernels::implicit_residual(c, iterate, target, start, r_.data(), b, e);
+uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* start, const Particle* target,
+                              Particle* iterate, uint32_t max_iterations, float tolerance, ThreadPool* pool) {
+    // r at the iterate, and r . p when p is given (the line search's slope at the new point).
+    auto residual = [&](const Particle* p) {
+        return over_blocks(pool, [&](uint32_t b, uint32_t e) {
+            return kernels::implicit_residual(c, iterate, target, start, p, r_.data(), b, e);
         });
     };
-    // Polak-Ribiere (clamped at 0, which restarts on the preconditioned residual), step length by
-    // one Newton step along the direction: alpha = r.p / p.Hp (Shewchuk 1994, "An introduction to
-    // the conjugate gradient method without the agonizing pain", B5). Phi must not rise: by the
-    // trapezoid rule along the last step, Phi(new) - Phi(old) = -alpha/2 (r_old.p + r_new.p); if
-    // that is positive the step overshot, so it is halved and the directions restart.
+    auto move = [&](const std::vector<Particle>& direction, float step) {  // iterate += step direction
+        over_blocks(pool, [&](uint32_t b, uint32_t e) {
+            for (uint32_t i = b; i < e; ++i) iterate[i] += Particle(step * glm::vec3(direction[i]), 0.0f);
+            return 0.0;
+        });
+    };
+    // Converged when a step released less than tolerance^2 times the kinetic energy of the predicted
+    // displacement y over the substep, sum m |y|^2 / (2 h^2) (inertia and external forces: at rest,
+    // gravity's h^2 g). The step's release is that of one Newton step along p, alpha r.p / 2,
+    // measured with the spring Hessian: r.z alone would rate a mode that A makes stiffer than it
+    // is (a taut sheet's sag) by A's stiffness and stop long before that mode settles.
+    const float inv_h2 = 1.0f / (c.h * c.h);
+    const double load = over_blocks(pool, [&](uint32_t b, uint32_t e) {
+        double sum = 0;
+        for (uint32_t i = b; i < e; ++i)
+            if (target[i].w != 0.0f)
+                sum += double(glm::dot(glm::vec3(target[i]), glm::vec3(target[i])) * (inv_h2 / target[i].w));
+        return sum;
+    });
+    const double converged_release = double(tolerance) * double(tolerance) * load;
+    // Preconditioned nonlinear conjugate gradients: the first direction is z = A^-1 r, then
+    // Polak-Ribiere (clamped at 0, which restarts on z), each with the step length of one Newton
+    // step along the direction, alpha = r.p / p.Hp (Shewchuk 1994, "An introduction to the
+    // conjugate gradient method without the agonizing pain", B5). Phi must not rise: by the
+    // trapezoid rule along the last step, Phi(new) - Phi(old) = -alpha/2 (r_old.p + r_new.p); if that
+    // is positive the step overshot, so it is halved and the directions restart. Every dot product
+    // is fused into a pass that computes one of its factors.
     double rz_prev = 0, rp_prev = 0;
-    float alpha = 0;
-    for (uint32_t it = 0; it < iterations; ++it) {
+    float alpha = 1;
+    uint32_t it = 0;
+    while (it < max_iterations) {
         std::swap(r_, r_prev_);
-        residual();
-        bool restart = it == 0;
-        if (it > 0 && rp_prev + dot(r_, p_) < 0) {
-            const float back = -0.5f * alpha;
-            each([&](uint32_t begin, uint32_t end) {
-                for (uint32_t i = begin; i < end; ++i) iterate[i] += Particle(back * glm::vec3(p_[i]), 0.0f);
-            });
-            residual();
+        const bool first = it == 0;
+        double rp_new = residual(first ? nullptr : p_.data());
+        bool restart = first;
+        if (!first && rp_prev + rp_new < 0) {
+            move(p_, -0.5f * alpha);
+            rp_new = residual(p_.data());
             restart = true;
         }
-        precondition(r_.data(), z_.data(), pool);
-        const double rz = dot(r_, z_);
-        if (!(rz > 0)) break;  // r = 0: at the minimum
-        double beta = restart ? 0.0 : std::max(0.0, (rz - dot(z_, r_prev_)) / rz_prev);
-        double rp = rz;
-        if (beta > 0) {
-            rp = rz + beta * dot(r_, p_);
-            if (!(rp > 0)) beta = 0, rp = rz;  // not downhill: restart
+        const Dots dots = precondition(r_.data(), r_prev_.data(), first ? p_.data() : z_.data(), pool);
+        ++it;
+        if (!(dots.rz > 0)) break;  // r = 0: at the minimum
+        if (max_iterations == 1) {
+            // A single iteration needs no step length: A bounds the (clamped) Hessian, so the plain
+            // step d += A^-1 r lowers Phi, and it solves the linear part (rigid motion, stretch
+            // along the load) at once.
+            move(p_, 1.0f);
+            break;
         }
-        const float b = float(beta);
-        each([&](uint32_t begin, uint32_t end) {
-            for (uint32_t i = begin; i < end; ++i) p_[i] = z_[i] + b * p_[i];
-        });
-        each([&](uint32_t b, uint32_t e) {
-            kernels::implicit_hessian_product(c, iterate, start, p_.data(), q_.data(), b, e);
-        });
-        alpha = float(rp / dot(p_, q_));
-        each([&](uint32_t begin, uint32_t end) {
-            for (uint32_t i = begin; i < end; ++i) iterate[i] += Particle(alpha * glm::vec3(p_[i]), 0.0f);
-        });
-        rz_prev = rz;
+        double rp = dots.rz;
+        if (!first) {
+            double beta = restart ? 0.0 : std::max(0.0, (dots.rz - dots.z_r_prev) / rz_prev);
+            if (beta > 0) {
+                rp = dots.rz + beta * rp_new;
+                if (!(rp > 0)) beta = 0, rp = dots.rz;  // not downhill: restart
+            }
+            const float b = float(beta);
+            over_blocks(pool, [&](uint32_t begin, uint32_t end) {
+                for (uint32_t i = begin; i < end; ++i) p_[i] = z_[i] + b * p_[i];
+                return 0.0;
+            });
+        }
+        alpha = float(rp / over_blocks(pool, [&](uint32_t begin, uint32_t end) {
+                          return kernels::implicit_curvature(c, iterate, start, p_.data(), begin, end);
+                      }));
+        move(p_, alpha);
+        if (double(alpha) * rp <= converged_release) break;
+        rz_prev = dots.rz;
         rp_prev = rp;
     }
+    return it;
 }
 
-void ImplicitSolve::precondition(const Particle* r, Particle* z, ThreadPool* pool) {
+ImplicitSolve::Dots ImplicitSolve::precondition(const Particle* r, const Particle* r_prev, Particle* z,
+                                                ThreadPool* pool) {
     // Parts on their own threads (part p on thread p mod size), or one after the other: the same
-    // arithmetic either way.
+    // arithmetic either way. Each part sums its rows' dot products in row order, the separator
+    // last; the sums are added in part order.
     const bool threaded = pool && pool->size() > 1 && particle_.size() >= ThreadPool::kMinParallelCount;
     auto each_part = [&](auto&& fn) {
         if (!threaded) {
@@ -254,8 +286,14 @@ void ImplicitSolve::precondition(const Particle* r, Particle* z, ThreadPool* poo
         });
     };
     each_part([&](int p) { forward_part(p, r); });
-    separator(r, z);
-    each_part([&](int p) { backward_part(p, z); });
+    separator(r, r_prev, z);
+    each_part([&](int p) { part_dots_[p] = back_substitute(begin_[p], begin_[p + 1], r, r_prev, z); });
+    Dots sum;
+    for (const Dots& d : part_dots_) {
+        sum.rz += d.rz;
+        sum.z_r_prev += d.z_r_prev;
+    }
+    return sum;
 }
 
 void ImplicitSolve::forward_part(int p, const Particle* r) {
@@ -275,7 +313,7 @@ void ImplicitSolve::forward_part(int p, const Particle* r) {
     }
 }
 
-void ImplicitSolve::separator(const Particle* r, Particle* z) {
+void ImplicitSolve::separator(const Particle* r, const Particle* r_prev, Particle* z) {
     // Forward over the separator rows (the parts' shares summed in part order), then backward.
     const uint32_t sep = begin_[kParts], m = begin_[kParts + 1];
     for (uint32_t row = sep; row < m; ++row) {
@@ -286,19 +324,25 @@ void ImplicitSolve::separator(const Particle* r, Particle* z) {
             v -= row_value_[k] * y_[row_col_[k]];
         y_[row] = v * inv_diag_[row];
     }
-    for (uint32_t row = m; row-- > sep;) back_substitute(row, z);
+    part_dots_[kParts] = back_substitute(sep, m, r, r_prev, z);
 }
 
-void ImplicitSolve::backward_part(int p, Particle* z) {
-    // L^T y' = y over the part's rows; they read only their own part and the separator.
-    for (uint32_t row = begin_[p + 1]; row-- > begin_[p];) back_substitute(row, z);
-}
-
-void ImplicitSolve::back_substitute(uint32_t row, Particle* z) {
-    glm::vec3 v = y_[row];
-    for (uint32_t k = col_start_[row]; k < col_start_[row + 1]; ++k) v -= col_value_[k] * y_[col_row_[k]];
-    y_[row] = v * inv_diag_[row];
-    z[particle_[row]] = Particle(y_[row], 0.0f);
+ImplicitSolve::Dots ImplicitSolve::back_substitute(uint32_t first, uint32_t last, const Particle* r,
+                                                   const Particle* r_prev, Particle* z) {
+    // L^T y' = y over rows [first, last), last row first; they read only later rows (their own part
+    // and the separator). z takes y' at each row's particle, with its dot products on the way.
+    Dots dots;
+    for (uint32_t row = last; row-- > first;) {
+        glm::vec3 v = y_[row];
+        for (uint32_t k = col_start_[row]; k < col_start_[row + 1]; ++k) v -= col_value_[k] * y_[col_row_[k]];
+        v *= inv_diag_[row];
+        y_[row] = v;
+        const uint32_t i = particle_[row];
+        z[i] = Particle(v, 0.0f);
+        dots.rz += double(glm::dot(v, glm::vec3(r[i])));
+        dots.z_r_prev += double(glm::dot(v, glm::vec3(r_prev[i])));
+    }
+    return dots;
 }
 
 }  // namespace drape

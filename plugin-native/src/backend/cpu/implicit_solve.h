@@ -7,7 +7,7 @@
 // cloth) in one iteration but charges a taut sheet's transverse sag the full k of each spring
 // where the true stiffness is k times the strain, so that mode crept (a 17^2 sheet at 1e5 N/m was
 // 7.9 % off after 10 s); conjugate directions with the step length from the spring Hessian
-// (kernels::implicit_hessian_product) take it in a few iterations. The fixed point is r = 0, the
+// (kernels::implicit_curvature) take it in a few iterations. The fixed point is r = 0, the
 // exact equilibrium, whatever the preconditioner, so A is refactored only when it drifts far.
 //
 // The factor's rows are ordered by a one-level nested dissection: two parts that share no spring,
@@ -43,21 +43,32 @@ class ImplicitSolve {
     /// Substep the factor was built for, s (0: none yet).
     float h() const { return h_; }
 
-    /// `iterations` conjugate-gradient iterations on the substep's displacements d = iterate (the
-    /// first iterate on entry, 0 on kinematic particles), from target and start (see
-    /// kernels::implicit_residual). pool: the threads to use, or null for the calling thread alone
-    /// (same bits). Does not allocate.
-    void solve(const kernels::SubstepContext& c, const Particle* start, const Particle* target,
-               Particle* iterate, uint32_t iterations, ThreadPool* pool);
+    /// Conjugate-gradient iterations on the substep's displacements d = iterate (the first iterate
+    /// on entry, 0 on kinematic particles), from target and start (see kernels::implicit_residual),
+    /// until converged (the preconditioned residual r.z below tolerance^2 times the energy scale of
+    /// the substep's predicted motion) or max_iterations; returns the iterations taken. pool: the
+    /// threads to use, or null for the calling thread alone (same bits). Does not allocate.
+    uint32_t solve(const kernels::SubstepContext& c, const Particle* start, const Particle* target, Particle* iterate,
+                   uint32_t max_iterations, float tolerance, ThreadPool* pool);
 
   private:
     static constexpr int kParts = 2;  ///< parts of the nested dissection; the separator follows
-    /// z = A^-1 r on the free particles (z stays 0 on kinematic ones).
-    void precondition(const Particle* r, Particle* z, ThreadPool* pool);
+    /// Particles per partial sum of a dot product: fixed, so that the order of the sums, and so their
+    /// bits, do not depend on the thread count.
+    static constexpr uint32_t kBlock = 256;
+    /// fn(begin, end) -> double over the particles in blocks of kBlock, each thread taking whole
+    /// blocks; returns the blocks' results summed in block order.
+    template <class Fn>
+    double over_blocks(ThreadPool* pool, Fn&& fn);
+
+    struct Dots {
+        double rz = 0, z_r_prev = 0;  ///< r.z and z.r_prev
+    };
+    /// z = A^-1 r on the free particles (z stays 0 on kinematic ones), with r.z and z.r_prev.
+    Dots precondition(const Particle* r, const Particle* r_prev, Particle* z, ThreadPool* pool);
     void forward_part(int p, const Particle* r);
-    void backward_part(int p, Particle* z);
-    void separator(const Particle* r, Particle* z);
-    void back_substitute(uint32_t row, Particle* z);
+    void separator(const Particle* r, const Particle* r_prev, Particle* z);
+    Dots back_substitute(uint32_t first, uint32_t last, const Particle* r, const Particle* r_prev, Particle* z);
 
     float h_ = 0;
     std::vector<float> key_;           ///< stiffness, damping and inverse masses it was built from
@@ -74,9 +85,11 @@ class ImplicitSolve {
     std::vector<uint32_t> sep_split_;
     std::vector<glm::vec3> y_;        ///< scratch, one per factor row
     std::vector<glm::vec3> sep_sum_;  ///< per part and separator row: sum of L_sk y_k over the part's k
+    Dots part_dots_[kParts + 1];      ///< the parts' and the separator's share of the dot products
+    std::vector<double> block_sum_;   ///< over_blocks' per-block results
     // Conjugate gradients, one record per particle: residual, the previous one, preconditioned
-    // residual, direction and H times it.
-    std::vector<Particle> r_, r_prev_, z_, p_, q_;
+    // residual and direction.
+    std::vector<Particle> r_, r_prev_, z_, p_;
 };
 
 }  // namespace drape

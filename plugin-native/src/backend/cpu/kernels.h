@@ -258,6 +258,17 @@ inline void implicit_predict(const SubstepContext& c, const Particle* x, const P
     }
 }
 
+/// Calls fn(j, rest, k) for each active spring of particle i: the particle at its other end, its
+/// rest length (m) and stiffness (N/m). Row-major table: a particle's springs are contiguous.
+template <class Fn>
+inline void for_active_springs(const SubstepContext& c, uint32_t i, Fn&& fn) {
+    const size_t row = size_t(i) * c.slots;
+    for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
+        const size_t slot = row + s;
+        if (active_slot(c, slot)) fn(c.nbr_index[slot], c.nbr_rest[slot], c.groups.stiffness[c.nbr_group[slot]]);
+    }
+}
+
 /// IMPLICIT model: one substep is implicit Euler (Baraff and Witkin 1998), posed as minimising
 ///   Phi(d) = sum_i |d_i - y_i|^2 / (2 w_i h^2) + sum_springs k/2 (|x_i - x_j| - L)^2
 /// (plus a dashpot kd along each spring) over the substep's displacements d, x = start + d. This
@@ -267,65 +278,64 @@ inline void implicit_predict(const SubstepContext& c, const Particle* x, const P
 /// first iterate is d = 0 (implicit_predict) and y = h^2 g, so a substep that stays at rest is
 /// one where the spring forces balance m g exactly, the springs' own equilibrium, whatever the
 /// iteration count (one Jacobi iteration of XPBD rests softer than its springs).
-inline void implicit_residual(const SubstepContext& c, const Particle* disp, const Particle* target,
-                              const Particle* start, Particle* residual, uint32_t begin, uint32_t end) {
+/// Returns sum_i r_i . p_i over the range in double (the conjugate-gradient solve's line search
+/// needs it; 0 when p is null), so that no second pass reads r.
+inline double implicit_residual(const SubstepContext& c, const Particle* disp, const Particle* target,
+                                const Particle* start, const Particle* p, Particle* residual, uint32_t begin,
+                                uint32_t end) {
     const float kd_h = c.damping / c.h;
     const float inv_h2 = 1.0f / (c.h * c.h);
+    double rp = 0;
     for (uint32_t i = begin; i < end; ++i) {
         const float wi = disp[i].w;
         glm::vec3 r(0.0f);
         if (wi != 0.0f) {
             const glm::vec3 di(disp[i]);
             const glm::vec3 si(start[i]);
-            const uint32_t count = c.nbr_count[i];
-            for (uint32_t s = 0; s < count; ++s) {
-                const size_t slot = size_t(s) * c.stride + i;
-                const uint8_t g = c.col_group[slot];
-                if (g >= DRAPE_GROUP_COUNT || !c.groups.active[g]) continue;
-                const uint32_t j = c.col_index[slot];
+            for_active_springs(c, i, [&](uint32_t j, float rest, float k) {
                 const glm::vec3 dij = di - glm::vec3(disp[j]);
                 float len;
                 const glm::vec3 n = direction((si - glm::vec3(start[j])) + dij, &len);
-                r -= (c.groups.stiffness[g] * (len - c.col_rest[slot]) + kd_h * glm::dot(n, dij)) * n;
-            }
+                r -= (k * (len - rest) + kd_h * glm::dot(n, dij)) * n;
+            });
             r -= (di - glm::vec3(target[i])) * (inv_h2 / wi);
+            if (p) rp += double(glm::dot(r, glm::vec3(p[i])));
         }
         residual[i] = Particle(r, wi);
     }
+    return rp;
 }
 
-/// IMPLICIT: q = H p, H the Hessian of Phi (implicit_residual) at disp with each spring's
-/// transverse stiffness clamped at 0, so that H is positive definite:
-///   H = M/h^2 + sum_springs (k + kd/h) n n^T + k max(0, 1 - L/l) (I - n n^T)  (per spring block,
-/// on p_i - p_j; the dashpot's change of direction is left out). p must be 0 on kinematic particles.
-inline void implicit_hessian_product(const SubstepContext& c, const Particle* disp, const Particle* start,
-                                     const Particle* p, Particle* q, uint32_t begin, uint32_t end) {
+/// IMPLICIT: the curvature p^T H p of Phi (implicit_residual) along p, at disp, over the masses and
+/// springs of particles [begin, end) in double. H has each spring's transverse stiffness clamped at
+/// 0, so that it is positive definite; per spring, on p_i - p_j,
+///   (k + kd/h) n n^T + k max(0, 1 - L/l) (I - n n^T)
+/// (the dashpot's change of direction is left out). p^T H p is a sum over springs, so each spring
+/// is counted once, from its lower-indexed end (from its free end if the other is kinematic), and
+/// no H p is stored. p must be 0 on kinematic particles.
+inline double implicit_curvature(const SubstepContext& c, const Particle* disp, const Particle* start,
+                                 const Particle* p, uint32_t begin, uint32_t end) {
     const float kd_h = c.damping / c.h;
     const float inv_h2 = 1.0f / (c.h * c.h);
+    double sum = 0;
     for (uint32_t i = begin; i < end; ++i) {
         const float wi = disp[i].w;
-        glm::vec3 out(0.0f);
-        if (wi != 0.0f) {
-            const glm::vec3 pi(p[i]);
-            const glm::vec3 xi = glm::vec3(start[i]) + glm::vec3(disp[i]);
-            const uint32_t count = c.nbr_count[i];
-            for (uint32_t s = 0; s < count; ++s) {
-                const size_t slot = size_t(s) * c.stride + i;
-                const uint8_t g = c.col_group[slot];
-                if (g >= DRAPE_GROUP_COUNT || !c.groups.active[g]) continue;
-                const uint32_t j = c.col_index[slot];
-                float len;
-                const glm::vec3 n = direction(xi - (glm::vec3(start[j]) + glm::vec3(disp[j])), &len);
-                const glm::vec3 dp = pi - glm::vec3(p[j]);
-                const float k = c.groups.stiffness[g];
-                const float along = glm::dot(n, dp);
-                const float across = len > 0.0f ? k * std::max(0.0f, 1.0f - c.col_rest[slot] / len) : 0.0f;
-                out += ((k + kd_h) * along) * n + across * (dp - along * n);
-            }
-            out += pi * (inv_h2 / wi);
-        }
-        q[i] = Particle(out, wi);
+        if (wi == 0.0f) continue;
+        const glm::vec3 pi(p[i]);
+        const glm::vec3 xi = glm::vec3(start[i]) + glm::vec3(disp[i]);
+        float e = glm::dot(pi, pi) * (inv_h2 / wi);
+        for_active_springs(c, i, [&](uint32_t j, float rest, float k) {
+            if (j < i && disp[j].w != 0.0f) return;  // counted from j
+            float len;
+            const glm::vec3 n = direction(xi - (glm::vec3(start[j]) + glm::vec3(disp[j])), &len);
+            const glm::vec3 dp = pi - glm::vec3(p[j]);
+            const float along = glm::dot(n, dp);
+            const float across = len > 0.0f ? k * std::max(0.0f, 1.0f - rest / len) : 0.0f;
+            e += (k + kd_h) * along * along + across * (glm::dot(dp, dp) - along * along);
+        });
+        sum += double(e);
     }
+    return sum;
 }
 
 /// Tethers (long-range attachments, Kim, Chentanez and Mueller 2012): particle i may be at most
