@@ -30,6 +30,10 @@
 //   DRAPE_PASS_MOVE          RigidMove (core/interaction.h) of the whole state: owner transform
 //                            (Cloth::move_state) and re-centring (Cloth::shift_origin: identity
 //                            rotation, to = -shift). Two outputs like MASS_SPRING: v_x, v_d
+//   DRAPE_PASS_STILL         the sleep check (Cloth::interaction_end_step) drawn, not fed back:
+//                            particles whose last substep displacement exceeds the threshold
+//                            land on the 1x1 target, the others are clipped; an occlusion query
+//                            counts them (no output, rasterizer on)
 //   DRAPE_DRAG_VIEWS         capacity of u_drag_views (drape_cloth_drag calls per step)
 //   DRAPE_MAX_TOUCHES        capacity of u_touches (touches per step)
 //   DRAPE_SHAPES             capacity of u_shapes (colliders, DRAPE_COLLIDER_VEC4 each: layout.h)
@@ -48,7 +52,8 @@
 // floatBitsToUint(rest), group, 0); the particle table texel i = (neighbour count, active springs,
 // 0, 0). All textures are u_tex_width texels wide (row-major).
 #if !defined(DRAPE_PASS_MASS_SPRING) && !defined(DRAPE_PASS_PREDICT) && !defined(DRAPE_PASS_CONSTRAINT) && \
-    !defined(DRAPE_PASS_TETHER) && !defined(DRAPE_PASS_INTERACT) && !defined(DRAPE_PASS_MOVE)
+    !defined(DRAPE_PASS_TETHER) && !defined(DRAPE_PASS_INTERACT) && !defined(DRAPE_PASS_MOVE) && \
+    !defined(DRAPE_PASS_STILL)
 #define DRAPE_PASS_MASS_SPRING 1
 #endif
 #ifndef DRAPE_SLOTS
@@ -105,6 +110,9 @@ uniform vec4 u_move_rot;             // quaternion (x, y, z, w)
 uniform vec3 u_move_pivot;
 uniform vec3 u_move_to;
 uniform float u_move_keep_velocity;
+#endif
+#ifdef DRAPE_PASS_STILL
+uniform float u_still_limit2;        // (sleep threshold * h_prev)^2, m^2
 #endif
 
 in vec4 a_x;                        // own record: position x (MS, PREDICT) / displacement iterate
@@ -338,6 +346,10 @@ void main() {
     v_x = vec4(rotate(u_move_rot, a_x.xyz - u_move_pivot) + u_move_to, a_x.w);
     v_d = u_move_keep_velocity > 0.0 ? vec4(rotate(u_move_rot, a_aux.xyz), a_aux.w) : vec4(0.0, 0.0, 0.0, a_x.w);
     return;
+#elif defined(DRAPE_PASS_STILL)
+    gl_PointSize = 1.0;
+    gl_Position = dot(a_aux.xyz, a_aux.xyz) > u_still_limit2 ? vec4(0.0, 0.0, 0.0, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
+    return;
 #else
     int i = gl_VertexID;
     vec3 xi = a_x.xyz;
@@ -542,5 +554,5 @@ void main() {
 #endif
 #endif
 #endif
-#endif  // DRAPE_PASS_MOVE
+#endif  // DRAPE_PASS_MOVE, DRAPE_PASS_STILL
 }

@@ -1,5 +1,5 @@
 // GLES backend features beyond stepping, each against the CPU backend on the same scene: owner
-// transform (inertia, teleport), touch drag without readback. Headless Mesa (llvmpipe; softpipe by the softpipe preset).
+// transform (inertia, teleport), touch drag without readback, sleep. Headless Mesa (llvmpipe; softpipe by the softpipe preset).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +8,8 @@
 
 #include "drape_test_util.h"
 #include "gles_test_util.h"
+
+#include <GLES3/gl3.h>
 
 using namespace drape_test;
 
@@ -179,6 +181,62 @@ TEST_P(GlesFeatures, DragCallsBetweenStepsAreBounded) {
     ASSERT_DRAPE_OK(drape_cloth_drag(gpu, &view, t, 16));
     EXPECT_EQ(drape_cloth_drag(gpu, &view, t, 1), DRAPE_ERROR_INVALID_ARGUMENT);
     ASSERT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 60));
+}
+
+// A sheet at rest falls asleep on GLES like on the CPU, checked on the GPU by an occlusion query
+// whose result is asked for (never waited for) at the next step. The test calls glFinish before
+// each step so that the result has arrived by then, whatever the machine's speed: then GLES sleeps
+// after the same steps as the CPU (and says so one step call later), but for the still test flipping
+// where the fastest particle's speed is within float rounding of the threshold (allowed: 1 step). Asleep, a GLES step makes no
+// GL call; moving a pin wakes both, and they go on together.
+TEST_P(GlesFeatures, SleepsAndWakesLikeCpu) {
+    WorldPtr w = make_world(1);
+    drape_cloth* cpu = sheet(w.get(), DRAPE_BACKEND_CPU, GetParam());
+    drape_cloth* gpu = sheet(w.get(), DRAPE_BACKEND_GLES, GetParam());
+    ASSERT_NE(gpu, nullptr);
+    const drape_sleep_desc sleep{sizeof(drape_sleep_desc), 0.05f, 0.25f};
+    for (drape_cloth* c : {cpu, gpu}) {
+        drape_params p = params_of(c);
+        p.air_drag = 4;  // comes to rest within a few seconds
+        ASSERT_DRAPE_OK(drape_cloth_set_params(c, &p));
+        ASSERT_DRAPE_OK(drape_cloth_set_sleep(c, &sleep));
+    }
+    auto asleep_after = [&](drape_cloth* c, int* steps) {
+        for (*steps = 0; *steps < 1200 && !stats_of(c).sleeping; ++*steps) {
+            glFinish();
+            ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
+        }
+    };
+    int cpu_steps = 0, gpu_steps = 0;
+    asleep_after(cpu, &cpu_steps);
+    asleep_after(gpu, &gpu_steps);
+    ASSERT_LT(cpu_steps, 1200) << "the CPU cloth never fell asleep";
+    // GLES learns at step k + 1 that step k was still, and skips it: one more call to see it asleep.
+    EXPECT_LE(std::abs(gpu_steps - (cpu_steps + 1)), 1) << "CPU asleep after " << cpu_steps << " steps, GLES after " << gpu_steps;
+    const float at_rest = max_abs_diff(positions(cpu), positions(gpu));
+    EXPECT_LE(at_rest, 1e-3f * kExtent);
+    // Asleep: no GL call, nothing moves.
+    const std::vector<float> resting = positions(gpu);
+    const uint64_t calls = drape_gl_call_count(nullptr);
+    for (int s = 0; s < 10; ++s) ASSERT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 60));
+    EXPECT_EQ(drape_gl_call_count(nullptr), calls) << "a sleeping GLES cloth called GL";
+    EXPECT_EQ(stats_of(gpu).sleeping, 1u);
+    EXPECT_EQ(max_abs_diff(positions(gpu), resting), 0.0f);
+    // A pin moves: both wake and swing back together.
+    drape_pin pin{sizeof(drape_pin), 0, {0.0f, 1.0f, 0.05f}};
+    float worst = 0;
+    for (drape_cloth* c : {cpu, gpu}) ASSERT_DRAPE_OK(drape_cloth_set_pins(c, &pin, 1));
+    for (int s = 1; s <= 20; ++s) {
+        for (drape_cloth* c : {cpu, gpu}) ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
+        EXPECT_EQ(stats_of(gpu).sleeping, 0u) << "step " << s;
+        const float err = max_abs_diff(positions(cpu), positions(gpu));
+        worst = std::max(worst, err);
+        expect_parity(err, s);
+    }
+    EXPECT_GT(max_abs_diff(positions(gpu), resting), 0.01f) << "the woken cloth did not move";
+    std::printf("[ parity   ] sleep, model %d: asleep after %d steps (CPU %d), |gles - cpu| = %.3g m at rest, %.3g m "
+                "over 20 steps after waking\n",
+                GetParam(), gpu_steps, cpu_steps, at_rest, worst);
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, GlesFeatures,

@@ -175,7 +175,7 @@ namespace Drape
         [Tooltip("Stop stepping while no camera renders the cloth (shadows and Scene view count).")]
         [SerializeField, FormerlySerializedAs("PauseWhenInvisible")] private bool _pauseWhenInvisible = true;
         [Tooltip("Sleep (stop stepping, no cost) when the fastest vertex stays below this speed, m/s, for Sleep Time; " +
-                 "0 = never. Moving colliders, pins, drag, the owner or parameter changes wake it. CPU backends only.")]
+                 "0 = never. Moving colliders, pins, drag, the owner or parameter changes wake it.")]
         [SerializeField, FormerlySerializedAs("SleepThreshold"), Range(0f, 0.5f)] private float _sleepThreshold = 0.01f;
         [Tooltip("Seconds the motion must stay below the sleep threshold before the cloth sleeps.")]
         [SerializeField, FormerlySerializedAs("SleepTime"), Range(0f, 10f)] private float _sleepTime = 1f;
@@ -590,7 +590,7 @@ namespace Drape
                 {
                     if (_pinsDirty) ApplyPins();
                     if (_paramsDirty) ApplyParams();
-                    if (_sleepDirty && !gpu) ApplySleep();
+                    if (_sleepDirty) ApplySleep();
                     ApplySelfCollision();
                     if (_worldSpace) PushOwner();
                     PushColliders();
@@ -960,13 +960,13 @@ namespace Drape
             ApplyPins();
             ApplyParams();
             ApplySelfCollision();
+            ApplySleep();
             if (ActiveBackend == Drape.Core.Backend.Gles)
             {
                 InitGpuOutput(positions);
             }
             else
             {
-                ApplySleep();
                 if (_worldSpace) PushOwner(); // the first call only records the owner's pose
                 ReadState(_vertices);
                 if (interpolated)

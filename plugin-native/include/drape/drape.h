@@ -208,7 +208,11 @@ DRAPE_API drape_status drape_cloth_set_positions(drape_cloth* cloth, const float
 /** Sets velocities (count*3 floats, caller order, m/s). */
 DRAPE_API drape_status drape_cloth_set_velocities(drape_cloth* cloth, const float* velocities, uint32_t count);
 
-/* Sleeping (CPU backends; GLES: DRAPE_ERROR_BACKEND_UNAVAILABLE). */
+/* Sleeping, on every backend. A GLES cloth checks its motion on the GPU without waiting for it (an
+ * occlusion query per step, its result asked for at a later step): it falls asleep at the first
+ * step after the result of a still step arrives (usually the next: the same state as a CPU cloth,
+ * one step call later), and while asleep its steps make no GL call. drape_stats.sleeping of a GLES
+ * cloth is current after a step or readback in immediate mode. */
 /* GENERATED BEGIN drape_sleep_desc */
 /* C# twin: Drape.Core.SleepDesc. A cloth whose fastest particle stays below `threshold` for `time` seconds of
  * steps falls asleep: its velocities are zeroed and drape_cloth_step returns at once without touching the

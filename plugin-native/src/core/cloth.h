@@ -147,10 +147,15 @@ protected:
     /// self-collision reference) -= shift.
     void shift_origin(const glm::vec3& shift);
     glm::dvec3 origin_{0.0};
-    // Step bookkeeping every backend does (core/interaction.cpp): asleep -> no step; after a step,
-    // colliders advance, drag is consumed and the sleep check runs.
+    // Step bookkeeping (core/interaction.cpp): asleep -> no step; after a step, colliders advance,
+    // drag is consumed (advance_interaction) and the sleep check runs (count_still): on the CPU
+    // copy in interaction_end_step, on the GPU for GLES.
     bool skip_step_asleep();
     void interaction_end_step(float dt, bool rolled_back);
+    void advance_interaction();
+    /// Sleep bookkeeping of a step that was still (fastest particle below the threshold) or not:
+    /// true when the cloth falls asleep now (the caller then zeroes the velocities).
+    bool count_still(bool still, float dt);
     Interaction ix_;
     SelfCollision sc_;  // setting, and the CPU step's hash storage
 

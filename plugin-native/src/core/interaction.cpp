@@ -75,6 +75,7 @@ void Cloth::set_sleep(float threshold, float time) {
 }
 
 void Cloth::wake() {
+    ++ix_.wakes;
     ix_.asleep = false;
     ix_.still_time = 0;
     stats_.sleeping = 0;
@@ -99,7 +100,7 @@ bool Cloth::skip_step_asleep() {
     return true;
 }
 
-void Cloth::interaction_end_step(float dt, bool rolled_back) {
+void Cloth::advance_interaction() {
     for (ColliderState& c : ix_.colliders) {
         c.pos_start = c.pos_end;
         c.rot_start = c.rot_end;
@@ -107,31 +108,36 @@ void Cloth::interaction_end_step(float dt, bool rolled_back) {
     for (uint32_t i : ix_.drag_particles) ix_.drag_marked[i] = 0;
     ix_.drag_particles.clear();
     stats_.sleeping = 0;
-    if (rolled_back || !(ix_.sleep_threshold > 0)) {
+}
+
+bool Cloth::count_still(bool still, float dt) {
+    if (!still || !(ix_.sleep_threshold > 0)) {
         ix_.still_time = 0;
-        return;
+        return false;
     }
-    // Fastest particle over the last substep.
+    ix_.still_time += dt;
+    if (ix_.still_time < ix_.sleep_time) return false;
+    ix_.asleep = true;
+    stats_.sleeping = 1;
+    return true;
+}
+
+void Cloth::interaction_end_step(float dt, bool rolled_back) {
+    advance_interaction();
+    // Still: the fastest particle over the last substep is below the threshold.
     const uint32_t n = topo_.particle_count;
     const Particle* disp = d_.data();
     const float limit = ix_.sleep_threshold * h_prev_;
     const float limit2 = limit * limit;
-    bool still = true;
+    bool still = !rolled_back && ix_.sleep_threshold > 0;
     for (uint32_t i = 0; i < n && still; ++i) {
         const glm::vec3 d(disp[i]);
         still = glm::dot(d, d) <= limit2;
     }
-    if (!still) {
-        ix_.still_time = 0;
-        return;
-    }
-    ix_.still_time += dt;
-    if (ix_.still_time >= ix_.sleep_time) {
+    if (count_still(still, dt)) {
         // Fall asleep at rest: velocities zeroed so that waking starts from rest.
         Particle* dw = d_.data();
         for (uint32_t i = 0; i < n; ++i) dw[i] = Particle(glm::vec3(0.0f), dw[i].w);
-        ix_.asleep = true;
-        stats_.sleeping = 1;
     }
 }
 

@@ -61,6 +61,7 @@ struct Interaction {
     float sleep_time = 1;       ///< s
     float still_time = 0;       ///< s of steps below the threshold so far
     bool asleep = false;
+    uint32_t wakes = 0;         ///< wake() calls so far (a GPU sleep check issued before one is stale)
     uint64_t collide_tests = 0; ///< particle-collider narrow-phase tests (diagnostics, tests)
 };
 

@@ -28,16 +28,16 @@ constexpr uint32_t kTexWidth = 1024;
 /// XPBD lambdas ride in the record as vec4s; sim.vert.glsl declares up to 8 (32 slots).
 constexpr uint32_t kMaxLambdaVec4 = 8;
 
-enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3, kTether = 4, kInteract = 5, kMove = 6 };  // kCommit: last iteration
+enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3, kTether = 4, kInteract = 5, kMove = 6, kStill = 7 };  // kCommit: last iteration
 // Uniforms outside the DrapeSim block (sim_uniforms.h): per substep, per collider set, per rigid
 // move. u_x / u_aux: the texture units of the pass's input buffers (see kNbrUnit).
 enum Uniform {
     uSubstep, uShapes, uShapeCount, uDragViews, uTouches, uTouchCount, uMoveRot, uMovePivot, uMoveTo,
-    uMoveKeepVelocity, uX, uAux, kUniformCount
+    uMoveKeepVelocity, uStillLimit2, uX, uAux, kUniformCount
 };
 const char* const kUniformNames[kUniformCount] = {
     "u_substep", "u_shapes",     "u_shape_count", "u_drag_views",         "u_touches", "u_touch_count",
-    "u_move_rot", "u_move_pivot", "u_move_to",     "u_move_keep_velocity", "u_x",       "u_aux"};
+    "u_move_rot", "u_move_pivot", "u_move_to",     "u_move_keep_velocity", "u_still_limit2", "u_x", "u_aux"};
 static_assert(kUniformCount <= GlesCloth::kMaxUniforms, "GlesCloth::Program::u holds every location");
 // Attribute locations (bound before linking).
 enum Attrib {
@@ -93,6 +93,7 @@ void delete_now(GlObjects& o) {
     glDeleteBuffers(7, bufs);
     o.vaos.push_back(o.out_vao);
     glDeleteVertexArrays(GLsizei(o.vaos.size()), o.vaos.data());
+    if (o.queries[0]) glDeleteQueries(3, o.queries);
     if (o.fbo) glDeleteFramebuffers(1, &o.fbo);
     if (o.rbo) glDeleteRenderbuffers(1, &o.rbo);
     for (GLuint p : o.programs) glDeleteProgram(p);
@@ -132,6 +133,8 @@ Result gl_error(const char* where) {
 struct StateGuard {
     GLint program, vao, array_buffer, unpack, copy_read, copy_write, tf_buffer, draw_fbo, active_tex;
     GLint uniform_buffer, block_buffer, block_start, block_size;  // generic and DrapeSim's indexed binding
+    GLint viewport[4];  // the sleep check draws into the cloth's 1x1 target
+    GLboolean scissor;
     GLint tex[kSetupUnit + 1];
     GLboolean discard;
     StateGuard() {
@@ -153,6 +156,8 @@ struct StateGuard {
             glGetIntegerv(GL_TEXTURE_BINDING_2D, &tex[u]);
         }
         discard = glIsEnabled(GL_RASTERIZER_DISCARD);
+        glGetIntegerv(GL_VIEWPORT, viewport);
+        scissor = glIsEnabled(GL_SCISSOR_TEST);
     }
     ~StateGuard() {
         for (int u = 0; u <= kSetupUnit; ++u) {
@@ -161,6 +166,8 @@ struct StateGuard {
         }
         glActiveTexture(GLenum(active_tex));
         if (discard) glEnable(GL_RASTERIZER_DISCARD); else glDisable(GL_RASTERIZER_DISCARD);
+        glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+        if (scissor) glEnable(GL_SCISSOR_TEST);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_fbo));
         if (block_size > 0)
             glBindBufferRange(GL_UNIFORM_BUFFER, kSimUniformsBinding, GLuint(block_buffer), block_start, block_size);
@@ -792,6 +799,7 @@ const std::string& GlesCloth::variant_defines(int pass) const {
     if (pass == kCommit) d += "#define DRAPE_COMMIT 1\n";
     if (pass == kTether) d += "#define DRAPE_PASS_TETHER 1\n";
     if (pass == kMove) d += "#define DRAPE_PASS_MOVE 1\n";
+    if (pass == kStill) d += "#define DRAPE_PASS_STILL 1\n";
     if (pass == kInteract) {
         d += "#define DRAPE_PASS_INTERACT 1\n";
         if (drag_variant_) {
@@ -820,7 +828,7 @@ Result GlesCloth::program(int pass, Program** out) {
             pass == kMassSpring || pass == kCommit || pass == kTether || pass == kInteract || pass == kMove;
         std::vector<std::string> varyings;
         if (two_outputs) varyings = {"v_x", "v_d"};
-        else varyings = {"v_d"};
+        else if (pass != kStill) varyings = {"v_d"};  // the sleep check draws, it feeds nothing back
         const bool xpbd = params_.model == DRAPE_MODEL_XPBD && (pass == kPredict || pass == kConstraint);
         if (xpbd)
             for (uint32_t k = 0; k + 1 < record_vec4(); ++k) varyings.push_back("v_lambda" + std::to_string(k));
@@ -1061,6 +1069,7 @@ Result GlesCloth::step(float dt) {
 }
 
 Result GlesCloth::gpu_step(float dt) {
+    if (skip_step_asleep()) return {};  // asleep: no GL call at all
     const auto t0 = std::chrono::steady_clock::now();
     if (Result r = ensure_gl(); !r.ok()) return r;
     std::string why;
@@ -1090,6 +1099,17 @@ Result GlesCloth::gpu_step(float dt) {
         if (Result r = program(kTether, &p_tether); !r.ok()) return r;
     Program* p_move = nullptr;  // compiled with the others: a first re-centre mid-game compiles nothing
     if (Result r = program(kMove, &p_move); !r.ok()) return r;
+    Program* p_still = nullptr;
+    if (ix_.sleep_threshold > 0)
+        if (Result r = program(kStill, &p_still); !r.ok()) return r;
+    if (still_count_ && poll_still()) {
+        // Fell asleep on an earlier step's check, before this step, as the CPU cloth after that
+        // step: velocities zeroed so that waking starts from rest, and no step.
+        begin_passes();
+        move_gpu_state(*p_move, {glm::quat(1.0f, 0.0f, 0.0f, 0.0f), glm::vec3(0.0f), glm::vec3(0.0f), false});
+        skip_step_asleep();
+        return gl_error("GLES cloth falling asleep");
+    }
     // Interaction (CpuCloth::collide): colliders in every substep, drag in the first.
     // Variants: DRAPE_SHAPES = collider capacity (power of two >= 4, 0 without colliders).
     Program *p_interact_first = nullptr, *p_interact = nullptr;
@@ -1194,7 +1214,8 @@ Result GlesCloth::gpu_step(float dt) {
     gpu_newer_ = true;
     drag_views_.clear();
     drag_touches_.clear();
-    interaction_end_step(dt, false);  // colliders advance (sleep is CPU-only)
+    advance_interaction();
+    issue_still(*p_still, dt);
     // Re-centre as CpuCloth::step does, without reading back: kinematic particles end the step on
     // their targets, which the CPU holds; a cloth without any decides from its last read-back copy
     // (shifted along with the state, so it stays consistent).
@@ -1216,6 +1237,10 @@ Result GlesCloth::gpu_step(float dt) {
 void GlesCloth::bind_framebuffer() {
     if (glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE) return;
     // No usable framebuffer (headless, no surface): draws fail even with rasterizer discard.
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, own_framebuffer());
+}
+
+GLuint GlesCloth::own_framebuffer() {
     if (!gl_.fbo) {
         GLint rb = 0;
         glGetIntegerv(GL_RENDERBUFFER_BINDING, &rb);
@@ -1227,7 +1252,52 @@ void GlesCloth::bind_framebuffer() {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl_.fbo);
         glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, gl_.rbo);
     }
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl_.fbo);
+    return gl_.fbo;
+}
+
+bool GlesCloth::poll_still() {
+    while (still_count_ > 0) {
+        const GLuint query = gl_.queries[still_first_];
+        GLuint available = 0;
+        glGetQueryObjectuiv(query, GL_QUERY_RESULT_AVAILABLE, &available);
+        if (!available) return false;  // asked again at the next step: never waited for
+        GLuint moved = 0;
+        glGetQueryObjectuiv(query, GL_QUERY_RESULT, &moved);
+        const StillQuery q = still_[still_first_];
+        still_first_ = (still_first_ + 1) % kStillQueries;
+        --still_count_;
+        if (q.wakes != ix_.wakes) continue;  // woken since: a check of the old motion
+        if (count_still(moved == 0, q.dt)) {
+            still_count_ = 0;  // later checks saw steps that a CPU cloth would not have taken
+            return true;
+        }
+    }
+    return false;
+}
+
+void GlesCloth::issue_still(Program& p, float dt) {
+    if (!(ix_.sleep_threshold > 0) || still_count_ == kStillQueries) return;
+    if (!gl_.queries[0]) glGenQueries(kStillQueries, gl_.queries);
+    const int slot = (still_first_ + still_count_) % kStillQueries;
+    still_[slot] = {dt, ix_.wakes};
+    ++still_count_;
+    // Drawn into the cloth's own 1x1 target, never the caller's (restored by the StateGuard).
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, own_framebuffer());
+    glViewport(0, 0, 1, 1);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_RASTERIZER_DISCARD);
+    use_program(p, -1, -1);
+    const float limit = ix_.sleep_threshold * h_prev_;  // as interaction_end_step
+    glUniform1f(p.u[uStillLimit2], limit * limit);
+    if (unpack_bound_) {
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+        unpack_bound_ = false;
+    }
+    glBindVertexArray(vertex_array(g_[0], g_[1], 0));
+    glBeginQuery(GL_ANY_SAMPLES_PASSED, gl_.queries[slot]);
+    glDrawArrays(GL_POINTS, 0, GLsizei(topo_.particle_count));
+    glEndQuery(GL_ANY_SAMPLES_PASSED);
+    glEnable(GL_RASTERIZER_DISCARD);
 }
 
 Result GlesCloth::write_output() {
@@ -1394,9 +1464,9 @@ Result GlesCloth::supports(Feature feature) const {
         return {DRAPE_ERROR_BACKEND_UNAVAILABLE,
                 "model IMPLICIT runs on the CPU backends only (its sparse Cholesky solve has no GLES form yet); "
                 "GLES runs MASS_SPRING, PBD and XPBD"};
-    case Feature::Sleep: return cpu_only("sleeping");
     case Feature::Grab: return cpu_only("grab");
     case Feature::Owner: return {};  // moved on the GPU (move_gpu_state)
+    case Feature::Sleep: return {};  // checked on the GPU (issue_still, poll_still)
     case Feature::SelfCollision:
         return {DRAPE_ERROR_BACKEND_UNAVAILABLE, "self-collision is not implemented on the GLES backend yet: use a "
                                                  "CPU or CPU_THREADED cloth, or leave it off"};
@@ -1432,6 +1502,7 @@ void GlesCloth::drop_gl() {
     if (!gl_ready_) return;
     pull();  // keep the latest state on the CPU; re-uploaded on the next device
     delete_now(gl_);
+    still_count_ = 0;
     programs_.clear();
     vaos_.clear();
     gl_ready_ = false;
@@ -1449,6 +1520,7 @@ void GlesCloth::forget_gl() {
     }
     gpu_newer_ = false;
     gpu_moves_.clear();  // made on the CPU copy, which the cloth resumes from
+    still_count_ = 0;    // its queries went with the context
     gl_ = GlObjects{};  // names of a dead context: never deleted (the next context may reuse them)
     programs_.clear();
     gl_ready_ = false;

@@ -64,7 +64,8 @@ struct GlObjects {
     GLuint uniforms = 0;  ///< the DrapeSim uniform block (SimUniforms)
     GLuint staging = 0;   ///< pixel-unpack buffer that table textures are uploaded through
     GLuint out_vao = 0;   ///< the output pass's inputs
-    GLuint fbo = 0, rbo = 0;
+    GLuint fbo = 0, rbo = 0;  ///< own 1x1 target (headless passes, the sleep check's points)
+    GLuint queries[3] = {};   ///< the sleep check's occlusion queries (GlesCloth::kStillQueries)
     std::vector<GLuint> programs;
     std::vector<GLuint> vaos;  ///< per pass configuration (GlesCloth::vertex_array)
     void* context = nullptr;  ///< EGLContext they were made in
@@ -103,6 +104,9 @@ public:
     /// kMaxDragCalls calls and kMaxTouches touches between two steps.
     Result drag(const drape_view& view, std::vector<drape_touch> touches) override;
     static constexpr uint32_t kMaxDragCalls = 4;
+    /// Sleep checks in flight at most (steps whose result has not arrived yet); a step finding
+    /// them all in flight issues none.
+    static constexpr int kStillQueries = 3;
     /// GL work needs the caller's context: stepped on the thread that steps the world.
     bool steps_on_pool_thread() const override { return false; }
 
@@ -166,6 +170,14 @@ private:
     /// GL work that uses it (the next step or readback; GL may not be current now).
     void move_state(const RigidMove& m) override;
     Result run_gpu_moves();
+    /// Sleep on the GPU, without waiting: counts the results of earlier steps' still checks that
+    /// have arrived, oldest first (count_still); true when the cloth falls asleep now.
+    bool poll_still();
+    /// This step's still check (Cloth::interaction_end_step on the GPU): an occlusion query over
+    /// points drawn only for particles that moved more than threshold * h over the last substep.
+    void issue_still(Program& p, float dt);
+    /// The own 1x1 framebuffer, made on first use.
+    GLuint own_framebuffer();
     /// kernels::tether: reads state buffers x and d, writes them to out_x and out_d.
     void run_tether(Program& p, int x, int d, int out_x, int out_d);
     bool has_tethers() const { return params_.max_stretch > 0 && !kinematic_.empty(); }
@@ -222,6 +234,12 @@ private:
     uint32_t shape_capacity_ = 0;  // DRAPE_SHAPES of the interaction program being asked for
     bool drag_variant_ = false;    // DRAPE_DRAG of the interaction program being asked for
     std::vector<float> shape_data_;
+    struct StillQuery {
+        float dt = 0;        // of the step it checked
+        uint32_t wakes = 0;  // ix_.wakes when issued: stale after a wake
+    };
+    StillQuery still_[kStillQueries];  // ring over gl_.queries: still_first_, still_count_ in flight
+    int still_first_ = 0, still_count_ = 0;
     std::vector<RigidMove> gpu_moves_;  // owner moves the GPU state has not had yet (in order)
     // Drag of the calls since the last step, as the shader's u_drag_views / u_touches (records in
     // shaders/layout.h); consumed by the next step. The counts as recorded by drag() on
