@@ -122,33 +122,25 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     a.setFromTriplets(entries.begin(), entries.end());
     Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>> llt(a);
 
-    // L in float, by columns (Eigen's storage, diagonal first) and by rows (sorted by column).
+    // L in float, by rows (sorted by column), from Eigen's columns (diagonal first).
     const SparseMatrix& l = llt.matrixL().nestedExpression();
     inv_diag_.resize(m);
-    col_start_.assign(1, 0);
-    col_row_.clear();
-    col_value_.clear();
     std::vector<uint32_t> row_count(m + 1, 0);
     for (int j = 0; j < m; ++j) {
         const int b = l.outerIndexPtr()[j], e = l.outerIndexPtr()[j + 1];
         inv_diag_[j] = float(1.0 / l.valuePtr()[b]);
-        for (int k = b + 1; k < e; ++k) {
-            col_row_.push_back(uint32_t(l.innerIndexPtr()[k]));
-            col_value_.push_back(float(l.valuePtr()[k]));
-            ++row_count[l.innerIndexPtr()[k] + 1];
-        }
-        col_start_.push_back(uint32_t(col_row_.size()));
+        for (int k = b + 1; k < e; ++k) ++row_count[l.innerIndexPtr()[k] + 1];
     }
     row_start_.resize(m + 1);
     std::partial_sum(row_count.begin(), row_count.end(), row_start_.begin());
     std::vector<uint32_t> fill(row_start_.begin(), row_start_.end() - 1);
-    row_col_.resize(col_row_.size());
-    row_value_.resize(col_row_.size());
+    row_col_.resize(row_start_[m]);
+    row_value_.resize(row_start_[m]);
     for (int j = 0; j < m; ++j)
-        for (uint32_t k = col_start_[j]; k < col_start_[j + 1]; ++k) {
-            const uint32_t at = fill[col_row_[k]]++;
+        for (int k = l.outerIndexPtr()[j] + 1; k < l.outerIndexPtr()[j + 1]; ++k) {
+            const uint32_t at = fill[l.innerIndexPtr()[k]]++;
             row_col_[at] = uint32_t(j);
-            row_value_[at] = col_value_[k];
+            row_value_[at] = float(l.valuePtr()[k]);
         }
     // The dissection holds: a part's rows only reach its own columns.
     for (int p = 0; p < kParts; ++p)
@@ -329,14 +321,15 @@ void ImplicitSolve::separator(const Particle* r, const Particle* r_prev, Particl
 
 ImplicitSolve::Dots ImplicitSolve::back_substitute(uint32_t first, uint32_t last, const Particle* r,
                                                    const Particle* r_prev, Particle* z) {
-    // L^T y' = y over rows [first, last), last row first; they read only later rows (their own part
-    // and the separator). z takes y' at each row's particle, with its dot products on the way.
+    // L^T y' = y over rows [first, last), last row first, by rows of L: a row's y is final once every
+    // later row has subtracted its share, and the row then subtracts its own from the earlier rows it
+    // reaches (its own part's; the separator's reach both parts, so it runs before them). z takes y'
+    // at each row's particle, with its dot products on the way.
     Dots dots;
     for (uint32_t row = last; row-- > first;) {
-        glm::vec3 v = y_[row];
-        for (uint32_t k = col_start_[row]; k < col_start_[row + 1]; ++k) v -= col_value_[k] * y_[col_row_[k]];
-        v *= inv_diag_[row];
+        const glm::vec3 v = y_[row] * inv_diag_[row];
         y_[row] = v;
+        for (uint32_t k = row_start_[row]; k < row_start_[row + 1]; ++k) y_[row_col_[k]] -= row_value_[k] * v;
         const uint32_t i = particle_[row];
         z[i] = Particle(v, 0.0f);
         dots.rz += double(glm::dot(v, glm::vec3(r[i])));

@@ -75,12 +75,10 @@ class ImplicitSolve {
     uint32_t begin_[kParts + 2] = {};  ///< factor rows of part p: [begin_[p], begin_[p + 1]); separator last
     std::vector<uint32_t> particle_;   ///< particle of each factor row
     std::vector<float> inv_diag_;      ///< 1 / L_jj
-    // Strictly lower part of L twice: by rows for the forward substitution, by columns for the
-    // back substitution (both are then gathers: a row only writes itself, so parts can run at once).
+    // Strictly lower part of L by rows: the forward substitution gathers along a row, the back
+    // substitution scatters along it (a part's rows reach only its own columns, so parts run at once).
     std::vector<uint32_t> row_start_, row_col_;
     std::vector<float> row_value_;
-    std::vector<uint32_t> col_start_, col_row_;
-    std::vector<float> col_value_;
     /// Per separator row, where its entries in each part's columns end (they are sorted by column).
     std::vector<uint32_t> sep_split_;
     std::vector<glm::vec3> y_;        ///< scratch, one per factor row
