@@ -16,6 +16,12 @@
 namespace drape {
 namespace {
 
+/// Normalised lerp along the shorter arc: accurate enough across one frame's substeps.
+glm::quat nlerp(const glm::quat& a, glm::quat b, float t) {
+    if (glm::dot(a, b) < 0) b = -b;
+    return glm::normalize(a * (1.0f - t) + b * t);
+}
+
 glm::quat to_quat(const float q[4]) { return glm::normalize(glm::quat(q[3], q[0], q[1], q[2])); }
 
 }  // namespace
@@ -288,6 +294,21 @@ void Cloth::move_state(const RigidMove& m) {
         x_[i] = Particle(m.apply(glm::vec3(x_[i])), x_[i].w);
         d_[i] = m.keep_velocity ? Particle(m.rot * glm::vec3(d_[i]), d_[i].w) : Particle(glm::vec3(0.0f), x_[i].w);
     }
+}
+
+CollideShape ColliderState::at_substep(uint32_t sub, uint32_t substeps) const {
+    const float t0 = float(sub) / float(substeps), t1 = float(sub + 1) / float(substeps);
+    const bool last = sub + 1 == substeps;
+    CollideShape s;
+    s.pos0 = pos_start + (pos_end - pos_start) * t0;
+    s.pos1 = last ? pos_end : pos_start + (pos_end - pos_start) * t1;
+    s.rot0 = nlerp(rot_start, rot_end, t0);
+    s.rot1 = last ? rot_end : nlerp(rot_start, rot_end, t1);
+    s.margin = margin;
+    s.friction = friction;
+    s.size = size;
+    s.shape = shape;
+    return s;
 }
 
 }  // namespace drape

@@ -10,10 +10,23 @@
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "drape/drape.h"
+#include "shaders/layout.h"
 
 namespace drape {
+
+/// One collider during one substep: the collider record of shaders/layout.h (DRAPE_COLLIDER_VEC4
+/// vec4s; the GLES backend uploads shape as a float).
+struct CollideShape {
+    glm::vec3 pos0; float margin;     ///< centre at the substep start (m); margin (m, >= 0)
+    glm::vec3 pos1; float friction;   ///< centre at the substep end (m); Coulomb coefficient (>= 0)
+    glm::quat rot0;                   ///< orientation at the substep start (unit)
+    glm::quat rot1;                   ///< orientation at the substep end (unit)
+    glm::vec3 size; uint32_t shape;   ///< drape_collider_shape and its sizes (see drape_collider)
+};
+static_assert(sizeof(CollideShape) == DRAPE_COLLIDER_VEC4 * sizeof(glm::vec4), "collider record of shaders/layout.h");
 
 /// A collider as the host gave it, plus where it was at the start of the current step.
 struct ColliderState {
@@ -22,6 +35,10 @@ struct ColliderState {
     float margin, friction;
     glm::vec3 pos_start, pos_end;  ///< m
     glm::quat rot_start, rot_end;  ///< unit
+
+    /// Substep `sub` of `substeps`: the previous -> new transform interpolated (position linearly,
+    /// rotation by normalised lerp), the last substep ending exactly at the new transform.
+    CollideShape at_substep(uint32_t sub, uint32_t substeps) const;
 };
 
 /// A rigid motion of the whole particle state (owner transform, re-centring): each position x goes

@@ -6,7 +6,7 @@
 // and the GLES interaction pass does the same per vertex (colliders as a uniform array of
 // CollideShape). The maths per particle and collider is shaders/collide_shape.h, shared with it.
 // Each collider is given at the start and at the end of the substep (the host's previous -> new
-// transform interpolated across the step's substeps, CpuCloth::collide).
+// transform interpolated across the step's substeps, ColliderState::at_substep).
 #pragma once
 
 #include <cmath>
@@ -17,21 +17,9 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "drape/drape.h"
-#include "shaders/layout.h"
+#include "core/interaction.h"  // CollideShape
 
 namespace drape::kernels {
-
-/// One collider during one substep: the collider record of shaders/layout.h (DRAPE_COLLIDER_VEC4
-/// vec4s; the GLES backend uploads shape as a float).
-struct CollideShape {
-    glm::vec3 pos0; float margin;     ///< centre at the substep start (m); margin (m, >= 0)
-    glm::vec3 pos1; float friction;   ///< centre at the substep end (m); Coulomb coefficient (>= 0)
-    glm::quat rot0;                   ///< orientation at the substep start (unit)
-    glm::quat rot1;                   ///< orientation at the substep end (unit)
-    glm::vec3 size; uint32_t shape;   ///< drape_collider_shape and its sizes (see drape_collider)
-};
-static_assert(sizeof(CollideShape) == DRAPE_COLLIDER_VEC4 * sizeof(glm::vec4), "collider record of shaders/layout.h");
 
 /// The collision maths shared with the GLES interaction pass (shape_distance, collide_local), written
 /// in the common subset of glm and GLSL: here it sees glm under GLSL's names.

@@ -86,7 +86,7 @@ private:
     std::vector<glm::vec3> kinematic_start_;  ///< kinematic particles' positions at the start of the step
 
     /// Colliders that may touch the cloth this substep (capacity DRAPE_MAX_COLLIDERS: kept).
-    std::vector<kernels::CollideShape> shapes_;
+    std::vector<CollideShape> shapes_;
 
     // Rollback copy and per-thread verify partials (allocated once).
     std::vector<Particle> backup_x_, backup_d_;

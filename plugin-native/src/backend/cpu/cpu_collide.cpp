@@ -15,12 +15,6 @@
 namespace drape::cpu {
 namespace {
 
-/// Normalised lerp along the shorter arc: accurate enough across one frame's substeps.
-glm::quat nlerp(const glm::quat& a, glm::quat b, float t) {
-    if (glm::dot(a, b) < 0) b = -b;
-    return glm::normalize(a * (1.0f - t) + b * t);
-}
-
 struct Aabb {
     glm::vec3 lo{INFINITY}, hi{-INFINITY};
     void add(const glm::vec3& p) {
@@ -37,7 +31,7 @@ struct Aabb {
 };
 
 /// World bounds of a (non-plane) shape at one transform, grown by its margin.
-void add_shape_bounds(Aabb& b, const kernels::CollideShape& s, const glm::vec3& pos, const glm::quat& rot) {
+void add_shape_bounds(Aabb& b, const CollideShape& s, const glm::vec3& pos, const glm::quat& rot) {
     if (s.shape == DRAPE_COLLIDER_SPHERE) {
         b.add(pos, s.size.x + s.margin);
     } else if (s.shape == DRAPE_COLLIDER_CAPSULE) {
@@ -90,18 +84,9 @@ void CpuCloth::collide(uint32_t sub) {
         cloth.add(glm::vec3(x[i]));
         cloth.add(glm::vec3(x[i]) - glm::vec3(d[i]));
     }
-    const float t0 = float(sub) / float(substeps), t1 = float(sub + 1) / float(substeps);
     shapes_.clear();
     for (const ColliderState& c : ix_.colliders) {
-        kernels::CollideShape s;
-        s.pos0 = c.pos_start + (c.pos_end - c.pos_start) * t0;
-        s.pos1 = sub + 1 == substeps ? c.pos_end : c.pos_start + (c.pos_end - c.pos_start) * t1;
-        s.rot0 = nlerp(c.rot_start, c.rot_end, t0);
-        s.rot1 = sub + 1 == substeps ? c.rot_end : nlerp(c.rot_start, c.rot_end, t1);
-        s.margin = c.margin;
-        s.friction = c.friction;
-        s.size = c.size;
-        s.shape = c.shape;
+        const CollideShape s = c.at_substep(sub, substeps);
         bool touches;
         if (c.shape == DRAPE_COLLIDER_PLANE) {
             touches = lowest_above_plane(cloth, s.pos0, s.rot0 * glm::vec3(0, 1, 0)) < s.margin ||
@@ -116,7 +101,7 @@ void CpuCloth::collide(uint32_t sub) {
     }
     if (shapes_.empty()) return;
     ix_.collide_tests += uint64_t(n) * shapes_.size();
-    const kernels::CollideShape* shapes = shapes_.data();
+    const CollideShape* shapes = shapes_.data();
     const uint32_t count = uint32_t(shapes_.size());
     for_particles([&](uint32_t b, uint32_t e) { kernels::collide(shapes, count, x, d, b, e); });
 }

@@ -980,28 +980,17 @@ void GlesCloth::run_tether(Program& p, int x, int d, int out_x, int out_d) {
     draw(vertex_array(x, d, kTetherInputs), out_x, out_d);
 }
 
-namespace {
-/// Normalised lerp along the shorter arc (core/interaction.cpp's nlerp, same operations).
-glm::quat nlerp(const glm::quat& a, glm::quat b, float t) {
-    if (glm::dot(a, b) < 0) b = -b;
-    return glm::normalize(a * (1.0f - t) + b * t);
-}
-}  // namespace
-
 uint32_t GlesCloth::build_shapes(uint32_t sub, uint32_t substeps) {
-    // The collider interpolation of CpuCloth::collide; its broad phase needs the cloth's
-    // bounds, which live on the GPU, so every collider is tested (the narrow phase skips a
-    // particle that cannot have touched a collider after one distance test).
-    const float t0 = float(sub) / float(substeps), t1 = float(sub + 1) / float(substeps);
+    // Every collider is tested: the CPU's broad phase needs the cloth's bounds, which live on the
+    // GPU (the narrow phase skips a particle that cannot have touched a collider after one distance
+    // test).
     shape_data_.clear();
     for (const ColliderState& c : ix_.colliders) {
-        const glm::vec3 pos0 = c.pos_start + (c.pos_end - c.pos_start) * t0;
-        const glm::vec3 pos1 = sub + 1 == substeps ? c.pos_end : c.pos_start + (c.pos_end - c.pos_start) * t1;
-        const glm::quat rot0 = nlerp(c.rot_start, c.rot_end, t0);
-        const glm::quat rot1 = sub + 1 == substeps ? c.rot_end : nlerp(c.rot_start, c.rot_end, t1);
-        const float rec[DRAPE_COLLIDER_VEC4 * 4] = {pos0.x, pos0.y, pos0.z, c.margin, pos1.x, pos1.y, pos1.z, c.friction,
-                               rot0.x, rot0.y, rot0.z, rot0.w, rot1.x, rot1.y, rot1.z, rot1.w,
-                               c.size.x, c.size.y, c.size.z, float(c.shape)};
+        const CollideShape s = c.at_substep(sub, substeps);
+        const float rec[DRAPE_COLLIDER_VEC4 * 4] = {s.pos0.x, s.pos0.y, s.pos0.z, s.margin, s.pos1.x, s.pos1.y, s.pos1.z,
+                                                    s.friction, s.rot0.x, s.rot0.y, s.rot0.z, s.rot0.w, s.rot1.x,
+                                                    s.rot1.y, s.rot1.z, s.rot1.w, s.size.x, s.size.y, s.size.z,
+                                                    float(s.shape)};
         shape_data_.insert(shape_data_.end(), std::begin(rec), std::end(rec));
     }
     return uint32_t(ix_.colliders.size());
