@@ -20,6 +20,8 @@
 #include <string>
 #include <thread>
 
+#include "drape/drape.h"
+
 /// GL ES calls libdrape made to entry point `name` (NULL: all) since it loaded them; exported by
 /// the library's GL loader for tests and the bench, not part of drape.h.
 extern "C" uint64_t drape_gl_call_count(const char* name);
@@ -138,6 +140,37 @@ private:
     std::deque<std::function<void()>> jobs_;
     bool quit_ = false;
     std::thread thread_;
+};
+
+/// Unity's render thread in a test: a RenderThread with its own headless GLES context.
+class GlesRenderThread : public RenderThread {
+public:
+    /// Creates the context and makes it current on the render thread: empty on success, else why not.
+    std::string start() {
+        const std::string why = run([this] { return gl.create(); });
+        if (!why.empty()) return why;
+        return run([this] { return gl.make_current(); }) ? std::string() : "eglMakeCurrent failed";
+    }
+    /// Destroys the context on the render thread.
+    void stop() {
+        run([this] { gl.destroy(); });
+    }
+    /// This plug-in's render event id (drape_unity_render_event).
+    static int32_t event_id() {
+        void* callback = nullptr;
+        int32_t id = -1;
+        drape_unity_render_event(&callback, &id);
+        return id;
+    }
+    /// Issues render event `id` through the plug-in's callback on the render thread, as Unity's
+    /// GL.IssuePluginEvent does each frame.
+    void fire(int32_t id = event_id()) {
+        void* callback = nullptr;
+        int32_t own = -1;
+        drape_unity_render_event(&callback, &own);
+        run([&] { reinterpret_cast<void (*)(int)>(callback)(id); });
+    }
+    HeadlessGles gl;
 };
 
 inline bool running_in_ci() {

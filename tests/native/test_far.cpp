@@ -95,30 +95,21 @@ float max_difference(const std::vector<float>& a, const std::vector<float>& b, c
 
 // One test body per backend; GLES runs with a headless context current (skipped without one,
 // failed under CI=true).
-class Far : public ::testing::TestWithParam<drape_backend> {
+#ifdef DRAPE_TEST_GLES
+using FarBase = WithHeadlessGles<::testing::TestWithParam<drape_backend>>;
+#else
+using FarBase = ::testing::TestWithParam<drape_backend>;
+#endif
+class Far : public FarBase {
 protected:
     void SetUp() override {
         if (GetParam() != DRAPE_BACKEND_GLES) return;
 #ifdef DRAPE_TEST_GLES
-        const std::string why = gl_.create();
-        if (!why.empty() || !gl_.make_current()) {
-            gl_.destroy();
-            DRAPE_GLES_UNAVAILABLE(why.empty() ? "eglMakeCurrent failed" : why);
-        }
-        ready_ = true;
+        FarBase::SetUp();
 #else
         GTEST_SKIP() << "built without the GLES backend";
 #endif
     }
-    void TearDown() override {
-#ifdef DRAPE_TEST_GLES
-        if (ready_) gl_.destroy();
-#endif
-    }
-#ifdef DRAPE_TEST_GLES
-    HeadlessGles gl_;
-    bool ready_ = false;
-#endif
 };
 
 }  // namespace
@@ -224,14 +215,9 @@ extern "C" void UnityPluginUnload();
 // steps, the render thread runs them and re-centres the cloth while pins recorded before are still
 // queued. They become local when applied, so the travelling cloth keeps the still cloth's shape.
 TEST(FarUnity, TravellingClothRecentresOnTheRenderThread) {
-    RenderThread render;
-    HeadlessGles gl;
-    const std::string why = render.run([&] { return gl.create(); });
-    if (!why.empty() || !render.run([&] { return gl.make_current(); })) DRAPE_GLES_UNAVAILABLE(why);
-    void* callback = nullptr;
-    int32_t event_id = -1;
-    ASSERT_DRAPE_OK(drape_unity_render_event(&callback, &event_id));
-    auto fire = [&] { render.run([&] { reinterpret_cast<void (*)(int)>(callback)(event_id); }); };
+    GlesRenderThread render;
+    if (const std::string why = render.start(); !why.empty()) DRAPE_GLES_UNAVAILABLE(why);
+    auto fire = [&] { render.fire(); };
     fire();  // the first event on a GL ES 3 thread makes GLES available
     const float zero[3] = {0, 0, 0};
     const float diff = max_difference(travel(DRAPE_BACKEND_CPU, 0), travel(DRAPE_BACKEND_GLES, 1920, fire), zero);
@@ -240,7 +226,7 @@ TEST(FarUnity, TravellingClothRecentresOnTheRenderThread) {
     EXPECT_LE(diff, 1e-4f * kSize);
     fire();  // frees the destroyed cloth's GL objects
     UnityPluginUnload();
-    render.run([&] { gl.destroy(); });
+    render.stop();
 }
 #endif
 

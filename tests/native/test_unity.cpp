@@ -48,10 +48,8 @@ FakeInterfaces g_interfaces{nullptr, nullptr,
 }  // namespace
 
 TEST(Unity, PluginLifecycleOnARenderThread) {
-    RenderThread render;
-    HeadlessGles gl;
-    const std::string why = render.run([&] { return gl.create(); });
-    if (!why.empty() || !render.run([&] { return gl.make_current(); })) DRAPE_GLES_UNAVAILABLE(why);
+    GlesRenderThread render;
+    if (const std::string why = render.start(); !why.empty()) DRAPE_GLES_UNAVAILABLE(why);
 
     const GlNameCounts before = render.run([] { return GlNameCounts::take(); });
     // Unity loads the plug-in on the main thread, then the device fires Initialize on the render thread.
@@ -63,7 +61,6 @@ TEST(Unity, PluginLifecycleOnARenderThread) {
     ASSERT_DRAPE_OK(drape_unity_render_event(&callback, &event_id));
     ASSERT_NE(callback, nullptr);
     EXPECT_EQ(event_id, 1000);
-    auto fire = [&] { render.run([&] { reinterpret_cast<void (*)(int)>(callback)(event_id); }); };
 
     // Main thread: no context here, yet GLES is available (recorded for the render thread).
     uint32_t available = 0;
@@ -93,10 +90,10 @@ TEST(Unity, PluginLifecycleOnARenderThread) {
     for (int frame = 0; frame < 20; ++frame) {
         ASSERT_DRAPE_OK(drape_cloth_step(cpu, 1.0f / 60));
         ASSERT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 60));  // recorded only
-        fire();                                               // GL work happens here
+        render.fire();  // GL work happens here
     }
     ASSERT_DRAPE_OK(drape_cloth_readback(gpu));
-    fire();
+    render.fire();
     const std::vector<float> expect = positions(cpu);
     const std::vector<float> got = positions(gpu);  // the read-back copy, no GL on this thread
     float err = 0;
@@ -118,14 +115,14 @@ TEST(Unity, PluginLifecycleOnARenderThread) {
 
     // Destroy on the main thread: GL objects go at the next render event.
     ASSERT_DRAPE_OK(drape_cloth_destroy(gpu));
-    fire();
+    render.fire();
     render.run([&] { glDeleteBuffers(1, &vbo); });
     EXPECT_EQ(render.run([] { return GlNameCounts::take(); }), before);
 
     // A cloth alive at device shutdown keeps its state on the CPU.
     drape_cloth* late = make_grid(w.get(), g, 0.5f, DRAPE_BACKEND_GLES);
     ASSERT_DRAPE_OK(drape_cloth_step(late, 1.0f / 60));
-    fire();
+    render.fire();
     render.run([] { g_device_callback(1); });  // Shutdown
     EXPECT_EQ(render.run([] { return GlNameCounts::take(); }), before);
     const std::vector<float> kept = positions(late);
@@ -134,29 +131,24 @@ TEST(Unity, PluginLifecycleOnARenderThread) {
     ASSERT_DRAPE_OK(drape_backend_available(DRAPE_BACKEND_GLES, &available));
     EXPECT_EQ(available, 0u);
     w.reset();
-    render.run([&] { gl.destroy(); });
+    render.stop();
 }
 
 // Statically linked plug-in (Unity source plug-in, IL2CPP players): UnityPluginLoad is never
 // called, so no device events arrive. The first render event on a thread with a GL ES 3 context
 // makes GLES available, and GLES cloths then step on that thread's events.
 TEST(Unity, RenderEventWithoutPluginLoadEnablesGles) {
-    RenderThread render;
-    HeadlessGles gl;
-    const std::string why = render.run([&] { return gl.create(); });
-    if (!why.empty() || !render.run([&] { return gl.make_current(); })) DRAPE_GLES_UNAVAILABLE(why);
+    GlesRenderThread render;
+    if (const std::string why = render.start(); !why.empty()) DRAPE_GLES_UNAVAILABLE(why);
 
-    void* callback = nullptr;
-    int32_t event_id = -1;
-    ASSERT_DRAPE_OK(drape_unity_render_event(&callback, &event_id));
-    auto fire = [&](int32_t id) { render.run([&] { reinterpret_cast<void (*)(int)>(callback)(id); }); };
+    const int32_t event_id = GlesRenderThread::event_id();
     uint32_t available = 1;
     ASSERT_DRAPE_OK(drape_backend_available(DRAPE_BACKEND_GLES, &available));
     EXPECT_EQ(available, 0u);  // main thread: no context, no device yet
-    fire(event_id + 7);        // another plug-in's event: ignored
+    render.fire(event_id + 7);  // another plug-in's event: ignored
     ASSERT_DRAPE_OK(drape_backend_available(DRAPE_BACKEND_GLES, &available));
     EXPECT_EQ(available, 0u);
-    fire(event_id);
+    render.fire(event_id);
     ASSERT_DRAPE_OK(drape_backend_available(DRAPE_BACKEND_GLES, &available));
     EXPECT_EQ(available, 1u);
 
@@ -169,10 +161,10 @@ TEST(Unity, RenderEventWithoutPluginLoadEnablesGles) {
     for (int frame = 0; frame < 5; ++frame) {
         ASSERT_DRAPE_OK(drape_cloth_step(cpu, 1.0f / 60));
         ASSERT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 60));
-        fire(event_id);
+        render.fire(event_id);
     }
     ASSERT_DRAPE_OK(drape_cloth_readback(gpu));
-    fire(event_id);
+    render.fire(event_id);
     const std::vector<float> expect = positions(cpu);
     const std::vector<float> got = positions(gpu);
     float err = 0;
@@ -180,27 +172,21 @@ TEST(Unity, RenderEventWithoutPluginLoadEnablesGles) {
     EXPECT_LT(expect[1], 1.0f);  // it fell
     EXPECT_LE(err, 1e-5f * 5 * std::sqrt(2.0f));
     ASSERT_DRAPE_OK(drape_cloth_destroy(gpu));
-    fire(event_id);  // GL objects go on the render thread
+    render.fire(event_id);  // GL objects go on the render thread
     w.reset();
     UnityPluginUnload();  // what remains of the device state (no Unity interfaces here)
     ASSERT_DRAPE_OK(drape_backend_available(DRAPE_BACKEND_GLES, &available));
     EXPECT_EQ(available, 0u);
-    render.run([&] { gl.destroy(); });
+    render.stop();
 }
 
 // The render thread's context is lost (Android): the main thread says so, the render thread makes
 // a new one, and the cloth resumes from its last readback at the next render event, like a CPU
 // cloth that was never interrupted.
 TEST(Unity, RenderThreadClothResumesAfterContextLoss) {
-    RenderThread render;
-    HeadlessGles gl;
-    const std::string why = render.run([&] { return gl.create(); });
-    if (!why.empty() || !render.run([&] { return gl.make_current(); })) DRAPE_GLES_UNAVAILABLE(why);
-    void* callback = nullptr;
-    int32_t event_id = -1;
-    ASSERT_DRAPE_OK(drape_unity_render_event(&callback, &event_id));
-    auto fire = [&] { render.run([&] { reinterpret_cast<void (*)(int)>(callback)(event_id); }); };
-    fire();  // makes GLES available (no plug-in load here)
+    GlesRenderThread render;
+    if (const std::string why = render.start(); !why.empty()) DRAPE_GLES_UNAVAILABLE(why);
+    render.fire();  // makes GLES available (no plug-in load here)
 
     WorldPtr w = make_world(1);
     drape_grid_desc g = grid_desc(8, 6, 1.0f, 1.0f);
@@ -211,19 +197,18 @@ TEST(Unity, RenderThreadClothResumesAfterContextLoss) {
     auto frame = [&] {
         ASSERT_DRAPE_OK(drape_cloth_step(cpu, 1.0f / 60));
         ASSERT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 60));
-        fire();
+        render.fire();
     };
     for (int f = 0; f < 4; ++f) frame();
     ASSERT_DRAPE_OK(drape_cloth_readback(gpu));
-    fire();
-    render.run([&] { gl.destroy(); });
+    render.fire();
+    render.stop();
     ASSERT_DRAPE_OK(drape_gles_context_lost());
-    const std::string again = render.run([&] { return gl.create(); });
+    const std::string again = render.start();
     ASSERT_TRUE(again.empty()) << again;
-    ASSERT_TRUE(render.run([&] { return gl.make_current(); }));
     for (int f = 0; f < 4; ++f) frame();
     ASSERT_DRAPE_OK(drape_cloth_readback(gpu));
-    fire();
+    render.fire();
     ASSERT_DRAPE_OK(drape_cloth_step(gpu, 1.0f / 60));  // no error met on the render thread
     const std::vector<float> expect = positions(cpu);
     const std::vector<float> got = positions(gpu);
@@ -232,8 +217,8 @@ TEST(Unity, RenderThreadClothResumesAfterContextLoss) {
     EXPECT_LT(expect[1], 0.99f);  // it fell
     EXPECT_LE(err, 1e-5f * 8 * std::sqrt(2.0f));
     ASSERT_DRAPE_OK(drape_cloth_destroy(gpu));
-    fire();
+    render.fire();
     w.reset();
     UnityPluginUnload();
-    render.run([&] { gl.destroy(); });
+    render.stop();
 }
