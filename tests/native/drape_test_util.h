@@ -36,11 +36,20 @@ inline drape_grid_desc grid_desc(uint32_t cols, uint32_t rows, float width, floa
     return g;
 }
 
+/// A grid cloth running `model`. Tests name their model rather than take the library's default,
+/// so a change of default changes only the tests about the default; XPBD is the one most tests
+/// about other things (collision, drag, backends, the Unity plug-in) were written and tuned for.
 inline drape_cloth* make_grid(drape_world* w, const drape_grid_desc& g, float mass,
-                              drape_backend backend = DRAPE_BACKEND_CPU) {
+                              drape_backend backend = DRAPE_BACKEND_CPU, drape_model model = DRAPE_MODEL_XPBD) {
     drape_cloth_desc d{sizeof d, uint32_t(backend), mass};
     drape_cloth* c = nullptr;
     EXPECT_EQ(drape_cloth_create_grid(w, &d, &g, &c), DRAPE_OK) << drape_last_error();
+    if (!c) return c;
+    drape_params p{};
+    p.struct_size = sizeof p;
+    EXPECT_EQ(drape_cloth_get_params(c, &p), DRAPE_OK) << drape_last_error();
+    p.model = model;
+    EXPECT_EQ(drape_cloth_set_params(c, &p), DRAPE_OK) << drape_last_error();
     return c;
 }
 

@@ -64,6 +64,7 @@ float max_penetration(const drape_collider& c, const std::vector<float>& x) {
 drape_params xpbd() {
     drape_params p{};
     drape_params_default(&p);
+    p.model = DRAPE_MODEL_XPBD;
     return p;
 }
 

@@ -65,6 +65,7 @@ drape_cloth* free_plane(drape_world* w) {
     drape_cloth* c = make_grid(w, g, 1);
     drape_params p{};
     drape_params_default(&p);
+    p.model = DRAPE_MODEL_XPBD;
     p.stiffness[0] = p.stiffness[1] = p.stiffness[2] = 0;
     p.gravity[1] = 0;
     p.air_drag = 0;

@@ -47,6 +47,7 @@ std::vector<float> run(drape_backend backend, const float offset[3], bool relati
 #endif
     drape_params p{};
     drape_params_default(&p);
+    p.model = DRAPE_MODEL_XPBD;
     p.damping = 0.01f;
     EXPECT_DRAPE_OK(drape_cloth_set_params(c, &p));
     for (int f = 0; f < 120; ++f) {
@@ -175,6 +176,7 @@ std::vector<float> travel(drape_backend backend, float speed, const std::functio
     drape_cloth* c = make_grid(w.get(), g, 0.1f, backend);
     drape_params p{};
     drape_params_default(&p);
+    p.model = DRAPE_MODEL_XPBD;
     p.damping = 0.01f;
     p.air_drag = 0;
     EXPECT_DRAPE_OK(drape_cloth_set_params(c, &p));

@@ -19,6 +19,7 @@ drape_cloth* hanging(drape_world* w) {
     EXPECT_DRAPE_OK(drape_cloth_set_pins(c, pins, 2));
     drape_params p{};
     drape_params_default(&p);
+    p.model = DRAPE_MODEL_XPBD;
     p.air_drag = 3;
     // The scene as first measured (4 substeps x 4 iterations, no tethers): a softer cloth whose lag
     // behind a moving owner is large; tethers and the converged 16-substep default both cap it.

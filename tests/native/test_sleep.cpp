@@ -20,6 +20,7 @@ drape_cloth* hanging(drape_world* w, uint32_t n = 24) {
     EXPECT_DRAPE_OK(drape_cloth_set_pins(c, pins, 2));
     drape_params p{};
     drape_params_default(&p);
+    p.model = DRAPE_MODEL_XPBD;
     p.air_drag = 3;  // settle within a few seconds
     EXPECT_DRAPE_OK(drape_cloth_set_params(c, &p));
     drape_sleep_desc s{sizeof s, 0.02f, 0.5f};
