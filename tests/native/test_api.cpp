@@ -132,6 +132,35 @@ TEST(Api, MeshCreationChecksItsInput) {
     EXPECT_EQ(c, nullptr);
 }
 
+// The default model is AUTO; a cloth stores and reports the model it resolved to, at creation and
+// when given AUTO again, and the stability estimate counts the resolved model's substeps.
+TEST(Api, DefaultModelResolvesPerBackend) {
+    drape_params p{};
+    ASSERT_DRAPE_OK(drape_params_default(&p));
+    EXPECT_EQ(p.model, uint32_t(DRAPE_MODEL_AUTO));
+    WorldPtr w = make_world();
+    for (drape_backend b : {DRAPE_BACKEND_CPU, DRAPE_BACKEND_CPU_THREADED}) {
+        drape_cloth_desc d{sizeof d, uint32_t(b), 1.0f};
+        drape_grid_desc g = grid_desc(4, 4, 1, 1);
+        drape_cloth* c = nullptr;
+        ASSERT_DRAPE_OK(drape_cloth_create_grid(w.get(), &d, &g, &c));
+        EXPECT_EQ(params_of(c).model, uint32_t(DRAPE_MODEL_IMPLICIT));
+        drape_params xpbd = p;
+        xpbd.model = DRAPE_MODEL_XPBD;
+        ASSERT_DRAPE_OK(drape_cloth_set_params(c, &xpbd));
+        EXPECT_EQ(params_of(c).model, uint32_t(DRAPE_MODEL_XPBD));
+        ASSERT_DRAPE_OK(drape_cloth_set_params(c, &p));
+        EXPECT_EQ(params_of(c).model, uint32_t(DRAPE_MODEL_IMPLICIT));
+        ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
+        EXPECT_EQ(stats_of(c).substeps, 2u);  // IMPLICIT's automatic substeps, not XPBD's 16
+        drape_stability e{};
+        e.struct_size = sizeof e;
+        ASSERT_DRAPE_OK(drape_estimate_stability(&d, &g, nullptr, &p, 1.0f / 60, &e));
+        EXPECT_EQ(e.substeps, 2u);
+        ASSERT_DRAPE_OK(drape_cloth_destroy(c));
+    }
+}
+
 TEST(Api, BadParamsLeaveTheClothUnchanged) {
     WorldPtr w = make_world();
     drape_cloth* c = make_grid(w.get(), grid_desc(4, 4, 1, 1), 1);

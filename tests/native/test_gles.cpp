@@ -300,6 +300,20 @@ INSTANTIATE_TEST_SUITE_P(
                       InteractCase{"MassSpring_Drag", DRAPE_MODEL_MASS_SPRING, Interact::Drag}),
     [](const ::testing::TestParamInfo<InteractCase>& info) { return std::string(info.param.name); });
 
+// The default model (AUTO) runs XPBD on GLES, which has no IMPLICIT form yet; the cloth reports it.
+TEST_F(Gles, DefaultModelIsXpbd) {
+    WorldPtr w = make_world(1);
+    drape_cloth_desc d{sizeof d, DRAPE_BACKEND_GLES, 0.5f};
+    const drape_grid_desc g = hanging_grid(4, 4);
+    drape_cloth* c = nullptr;
+    ASSERT_DRAPE_OK(drape_cloth_create_grid(w.get(), &d, &g, &c));
+    EXPECT_EQ(params_of(c).model, uint32_t(DRAPE_MODEL_XPBD));
+    drape_params p{};
+    ASSERT_DRAPE_OK(drape_params_default(&p));
+    ASSERT_DRAPE_OK(drape_cloth_set_params(c, &p));
+    EXPECT_EQ(params_of(c).model, uint32_t(DRAPE_MODEL_XPBD));
+}
+
 TEST_F(Gles, WorldStepAndModelSwitchKeepParity) {
     WorldPtr w = make_world(2);
     const drape_grid_desc g = hanging_grid(10, 8);

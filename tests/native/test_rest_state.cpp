@@ -158,6 +158,24 @@ INSTANTIATE_TEST_SUITE_P(R13, RestState,
                                            RestScene{Scene::Sheet, 17, 1, 1e4f},
                                            RestScene{Scene::Curtain, 17, 50, 1e4f}));
 
+// The default model (AUTO) is IMPLICIT on both CPU backends: a cloth reports it, and rests at the
+// springs' equilibrium like the explicit IMPLICIT above.
+TEST(RestState, DefaultModelRestsAtTheNewtonEquilibriumOnCpuBackends) {
+    for (drape_backend b : {DRAPE_BACKEND_CPU, DRAPE_BACKEND_CPU_THREADED})
+        for (Scene scene : {Scene::Sheet, Scene::Curtain}) {
+            const RestScene s{scene, 17, 1};
+            RestSetup setup = make_scene(s, DRAPE_MODEL_AUTO, b);
+            EXPECT_EQ(params_of(setup.cloth).model, uint32_t(DRAPE_MODEL_IMPLICIT));
+            const std::vector<double> ref = newton_reference(setup);
+            settle(setup.cloth, 10);
+            const RestError e = rest_error(positions(setup.cloth), ref, setup.rest);
+            std::printf("[ measured ] default model, backend %d, %s 17^2: vertex error %.2e, lowest point %.2e\n",
+                        int(b), scene_name(scene), e.vertex, e.lowest);
+            EXPECT_LT(e.vertex, 5e-3);
+            EXPECT_LT(e.lowest, 5e-3);
+        }
+}
+
 // A taut sheet with stiff springs (17^2 pinned on two edges, 1e5 N/m) sags transversely to every
 // spring, where its stiffness is only k times the strain: the constant preconditioner charges that
 // mode the full k, and its fixed-point iteration alone was still 7.9 % off after 10 s at 4 x 4

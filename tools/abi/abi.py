@@ -58,11 +58,14 @@ ENUMS = [
     enum("drape_model", "Model", "", cs_prefix="DRAPE_MODEL_", values=[
         ("DRAPE_MODEL_MASS_SPRING", 0, "Hooke springs + damping, Verlet (paper eq. 1-3)"),
         ("DRAPE_MODEL_PBD", 1, "stretch constraints, stiffness in [0,1] (paper eq. 4-8)"),
-        ("DRAPE_MODEL_XPBD", 2, "compliance = 1/stiffness in physical units, one Jacobi pass per iteration; the "
-                                "default. Rests softer than its springs with few iterations"),
+        ("DRAPE_MODEL_XPBD", 2, "compliance = 1/stiffness in physical units, one Jacobi pass per iteration. "
+                                "Rests softer than its springs with few iterations"),
         ("DRAPE_MODEL_IMPLICIT", 3, "implicit Euler on the same springs (N/m): exact force residual, prefactored "
                                     "sparse Cholesky preconditioner; rests exactly at the springs' equilibrium "
                                     "whatever the budget. CPU backends only"),
+        ("DRAPE_MODEL_AUTO", 4, "the default: the backend's model that rests at the springs' equilibrium, "
+                                "IMPLICIT on CPU and CPU_THREADED; XPBD on GLES (IMPLICIT has no GLES form yet). "
+                                "A cloth stores the model it resolved to (drape_cloth_get_params reports it)"),
     ]),
     enum("drape_group", "Group", "Spring / constraint groups of the 12-neighbour stencil (grid) or of a mesh.",
          cs_prefix="DRAPE_GROUP_", values=[
@@ -129,7 +132,7 @@ STRUCTS = [
     struct("drape_params", "Params",
            "Settable at any time; drape_params_default fills the defaults.", serializable=True, validate=True,
            fields=[
-               field("model", "u32", "drape_model", enum="drape_model", default="DRAPE_MODEL_XPBD"),
+               field("model", "u32", "drape_model", enum="drape_model", default="DRAPE_MODEL_AUTO"),
                field("stiffness", "f32[3]",
                      "per drape_group. MASS_SPRING, XPBD, IMPLICIT: N/m per spring (0 = group off); PBD: fraction in [0,1] "
                      "per iteration", cs_type="GroupValues", default=[2000.0, 1000.0, 200.0], range=(0, 1e9)),

@@ -122,11 +122,13 @@ namespace Drape
         [Tooltip("Auto: the GPU (OpenGL ES 3) where it can run this cloth, else the CPU (threaded for large cloths). " +
                  "The inspector says which one runs and why.")]
         [SerializeField, FormerlySerializedAs("Backend")] private DrapeBackendChoice _backend = DrapeBackendChoice.Auto;
-        [Tooltip("XPBD: accurate, stiffness in N/m, independent of step and iterations (default). " +
+        [Tooltip("Auto (default): the model that rests where its springs balance gravity on the backend that runs " +
+                 "the cloth: implicit on the CPU, XPBD on the GPU. " +
+                 "XPBD: stiffness in N/m, independent of step and iterations; rests softer than its springs. " +
                  "PBD: the paper's position-based model, stiffness is a fraction per iteration (0..1). " +
                  "Mass-spring: the paper's explicit springs; needs substeps when stiff. " +
                  "Implicit: implicit Euler on the same springs (N/m), stable at any stiffness (CPU).")]
-        [SerializeField, FormerlySerializedAs("Model")] private Model _model = Model.Xpbd;
+        [SerializeField, FormerlySerializedAs("Model")] private Model _model = Model.Auto;
         [Tooltip("Mass-spring, XPBD and implicit: stretch springs (grid neighbours, mesh edges), N/m per spring.")]
         [SerializeField, FormerlySerializedAs("StructuralStiffness")] private float _structuralStiffness = 2000f;
         [Tooltip("Mass-spring, XPBD and implicit: shear springs (grid diagonals), N/m per spring.")]

@@ -94,7 +94,7 @@ namespace Drape
 
         public static string ModelName(Model m) =>
             m == Model.Xpbd ? "XPBD" : m == Model.Pbd ? "PBD" : m == Model.MassSpring ? "mass-spring" :
-            m == Model.Implicit ? "implicit" : "?";
+            m == Model.Implicit ? "implicit" : m == Model.Auto ? "auto" : "?";
 
         public static string BackendName(Backend b) =>
             b == Backend.Gles ? "GPU (GLES)" : b == Backend.CpuThreaded ? "CPU threaded" : b == Backend.Cpu ? "CPU" : "?";

@@ -243,11 +243,14 @@ DRAPE_API drape_status drape_cloth_wake(drape_cloth* cloth);
 typedef enum drape_model {
     DRAPE_MODEL_MASS_SPRING = 0, /**< Hooke springs + damping, Verlet (paper eq. 1-3) */
     DRAPE_MODEL_PBD = 1, /**< stretch constraints, stiffness in [0,1] (paper eq. 4-8) */
-    DRAPE_MODEL_XPBD = 2, /**< compliance = 1/stiffness in physical units, one Jacobi pass per iteration; the
-                               default. Rests softer than its springs with few iterations */
-    DRAPE_MODEL_IMPLICIT = 3 /**< implicit Euler on the same springs (N/m): exact force residual, prefactored
-                                  sparse Cholesky preconditioner; rests exactly at the springs' equilibrium
-                                  whatever the budget. CPU backends only */
+    DRAPE_MODEL_XPBD = 2, /**< compliance = 1/stiffness in physical units, one Jacobi pass per iteration.
+                               Rests softer than its springs with few iterations */
+    DRAPE_MODEL_IMPLICIT = 3, /**< implicit Euler on the same springs (N/m): exact force residual, prefactored
+                                   sparse Cholesky preconditioner; rests exactly at the springs' equilibrium
+                                   whatever the budget. CPU backends only */
+    DRAPE_MODEL_AUTO = 4 /**< the default: the backend's model that rests at the springs' equilibrium,
+                              IMPLICIT on CPU and CPU_THREADED; XPBD on GLES (IMPLICIT has no GLES form yet).
+                              A cloth stores the model it resolved to (drape_cloth_get_params reports it) */
 } drape_model;
 /* GENERATED END drape_model */
 
@@ -265,7 +268,7 @@ typedef enum drape_group {
 /* C# twin: Drape.Core.Params. Settable at any time; drape_params_default fills the defaults. */
 typedef struct drape_params {
     uint32_t struct_size;
-    uint32_t model; /**< drape_model. Default XPBD */
+    uint32_t model; /**< drape_model. Default AUTO */
     float stiffness[3]; /**< per drape_group. MASS_SPRING, XPBD, IMPLICIT: N/m per spring (0 = group off);
                              PBD: fraction in [0,1] per iteration. Range [0, 1e9]. Default 2000, 1000, 200 */
     float damping; /**< N*s/m, along each spring (eq. 2; XPBD: constraint damping; IMPLICIT: implicit

@@ -102,7 +102,7 @@ struct Layout<drape_params> {
     static drape_params defaults() {
         drape_params s{};
         s.struct_size = sizeof s;
-        s.model = DRAPE_MODEL_XPBD;
+        s.model = DRAPE_MODEL_AUTO;
         s.stiffness[0] = 2000.0f;
         s.stiffness[1] = 1000.0f;
         s.stiffness[2] = 200.0f;
@@ -118,7 +118,7 @@ struct Layout<drape_params> {
             *message = std::move(text);
             return status;
         };
-        if (s.model > 3)
+        if (s.model > 4)
             return fail(DRAPE_ERROR_INVALID_ENUM, "model " + std::to_string(s.model) + " is not a drape_model");
         if (!std::isfinite(s.stiffness[0]) || !std::isfinite(s.stiffness[1]) || !std::isfinite(s.stiffness[2]))
             return fail(DRAPE_ERROR_NOT_FINITE, "stiffness is NaN or infinite");

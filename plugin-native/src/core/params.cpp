@@ -10,6 +10,11 @@ namespace drape {
 
 drape_params default_params() { return abi::Layout<drape_params>::defaults(); }
 
+drape_params resolve_model(drape_params p, drape_backend backend) {
+    if (p.model == DRAPE_MODEL_AUTO) p.model = backend == DRAPE_BACKEND_GLES ? DRAPE_MODEL_XPBD : DRAPE_MODEL_IMPLICIT;
+    return p;
+}
+
 std::string validate_params(const drape_params& p, drape_status* status) {
     std::string problem;
     *status = abi::Layout<drape_params>::check(p, &problem);  // tools/abi/abi.py: enums, finite, ranges

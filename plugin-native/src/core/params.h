@@ -10,6 +10,11 @@ namespace drape {
 /// Defaults documented in drape.h (from tools/abi/abi.py).
 drape_params default_params();
 
+/// `p` with DRAPE_MODEL_AUTO replaced by the model a cloth on `backend` runs for it: the one that
+/// rests at the springs' equilibrium (IMPLICIT) where the backend has it, else XPBD; any other
+/// model is kept.
+drape_params resolve_model(drape_params p, drape_backend backend);
+
 /// Empty string when valid; otherwise what is wrong (status in *status).
 std::string validate_params(const drape_params& p, drape_status* status);
 

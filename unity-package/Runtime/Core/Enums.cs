@@ -52,13 +52,17 @@ namespace Drape.Core
         MassSpring = 0,
         /// <summary>Stretch constraints, stiffness in [0,1] (paper eq. 4-8).</summary>
         Pbd = 1,
-        /// <summary>Compliance = 1/stiffness in physical units, one Jacobi pass per iteration; the default.
-        /// Rests softer than its springs with few iterations.</summary>
+        /// <summary>Compliance = 1/stiffness in physical units, one Jacobi pass per iteration. Rests softer
+        /// than its springs with few iterations.</summary>
         Xpbd = 2,
         /// <summary>Implicit Euler on the same springs (N/m): exact force residual, prefactored sparse
         /// Cholesky preconditioner; rests exactly at the springs' equilibrium whatever the budget. CPU
         /// backends only.</summary>
         Implicit = 3,
+        /// <summary>The default: the backend's model that rests at the springs' equilibrium, IMPLICIT on CPU
+        /// and CPU_THREADED; XPBD on GLES (IMPLICIT has no GLES form yet). A cloth stores the model it
+        /// resolved to (drape_cloth_get_params reports it).</summary>
+        Auto = 4,
     }
 
     /// <summary>C twin: drape_group. Spring / constraint groups of the 12-neighbour stencil (grid) or of a

@@ -81,7 +81,7 @@ namespace Drape.Core
     public partial struct Params
     {
         public uint StructSize;
-        /// <summary>Drape_model. Default XPBD.</summary>
+        /// <summary>Drape_model. Default AUTO.</summary>
         public Model Model;
         /// <summary>Per drape_group. MASS_SPRING, XPBD, IMPLICIT: N/m per spring (0 = group off); PBD:
         /// fraction in [0,1] per iteration. Range [0, 1e9]. Default 2000, 1000, 200.</summary>
