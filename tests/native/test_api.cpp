@@ -172,7 +172,7 @@ TEST(Api, BadParamsLeaveTheClothUnchanged) {
         EXPECT_EQ(std::memcmp(&now, &before, sizeof now), 0) << "params changed by a refused call";
         p = before;
     };
-    p.model = 4;
+    p.model = 5;
     expect_refused(DRAPE_ERROR_INVALID_ENUM);
     p.stiffness[1] = kNaN;
     expect_refused(DRAPE_ERROR_NOT_FINITE);

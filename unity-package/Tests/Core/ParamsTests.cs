@@ -150,7 +150,9 @@ namespace Drape.Tests
             // Two triangles (a unit quad), XPBD defaults: 16 automatic substeps, no explicit bound.
             float[] positions = { 0f, 0f, 0f, 1f, 0f, 0f, 1f, 0f, 1f, 0f, 0f, 1f };
             int[] indices = { 0, 1, 2, 0, 2, 3 };
-            StabilityEstimate e = Stability.ForMesh(positions, indices, 0f, 1f, NativeWorld.DefaultParams(), 1f / 60f);
+            Params xpbd = NativeWorld.DefaultParams();
+            xpbd.Model = Model.Xpbd;
+            StabilityEstimate e = Stability.ForMesh(positions, indices, 0f, 1f, xpbd, 1f / 60f);
             Assert.That(e.Substeps, Is.EqualTo(16u));
             Assert.That(e.Stable, Is.EqualTo(1u));
             int[] bad = { 0, 1, 9 };
