@@ -7,6 +7,9 @@
 //
 // Timings are wall-clock medians over repeated steps of one run on a shared machine; they are
 // numbers to compare within one run, never assertions.
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -21,8 +24,6 @@
 #include <set>
 #include <sstream>
 #include <string>
-#include <sys/stat.h>
-#include <unistd.h>
 #include <vector>
 
 #include "drape/drape.h"
@@ -45,7 +46,7 @@ struct Options {
 };
 
 class Csv {
-public:
+  public:
     Csv(const std::string& path, const char* header) : f_(std::fopen(path.c_str(), "w")) {
         if (!f_) {
             std::fprintf(stderr, "drape_bench: cannot write %s\n", path.c_str());
@@ -61,13 +62,13 @@ public:
         std::fflush(f_);
     }
 
-private:
+  private:
     FILE* f_;
 };
 
 /// One line rewritten in place on a terminal; in a log, a line every 10% or 20 s.
 class Progress {
-public:
+  public:
     void start(const std::string& phase, int total) {
         phase_ = phase;
         total_ = std::max(total, 1);
@@ -83,15 +84,15 @@ public:
         if (tty_) std::fputc('\n', stderr);
     }
 
-private:
+  private:
     void show(const std::string& label) {
         const double t = std::chrono::duration<double>(Clock::now() - t0_).count();
         const int decile = 10 * done_ / total_;
         if (!tty_ && decile == last_decile_ && t < last_line_ + 20) return;
         last_decile_ = decile;
         last_line_ = t;
-        std::fprintf(stderr, "%s[drape_bench %6.1fs] %-10s %3d/%-3d %-44.44s%s", tty_ ? "\r" : "", t, phase_.c_str(),
-                     done_, total_, label.c_str(), tty_ ? "" : "\n");
+        std::fprintf(stderr, "%s[drape_bench %6.1fs] %-10s %3d/%-3d %-44.44s%s", tty_ ? "\r" : "", t,
+                     phase_.c_str(), done_, total_, label.c_str(), tty_ ? "" : "\n");
         std::fflush(stderr);
     }
     std::string phase_;
@@ -118,9 +119,10 @@ std::string fmt(const char* f, double v) {
 }
 
 const char* model_name(uint32_t m) {
-    return m == DRAPE_MODEL_MASS_SPRING ? "mass_spring" : m == DRAPE_MODEL_PBD ? "pbd"
-           : m == DRAPE_MODEL_XPBD        ? "xpbd"
-                                          : "implicit";
+    return m == DRAPE_MODEL_MASS_SPRING ? "mass_spring"
+           : m == DRAPE_MODEL_PBD       ? "pbd"
+           : m == DRAPE_MODEL_XPBD      ? "xpbd"
+                                        : "implicit";
 }
 const char* backend_name(uint32_t b) {
     return b == DRAPE_BACKEND_CPU ? "cpu" : b == DRAPE_BACKEND_CPU_THREADED ? "cpu_threaded" : "gles";
@@ -143,8 +145,8 @@ struct Sim {
     drape_world* world = nullptr;
     drape_cloth* cloth = nullptr;
     uint32_t cols = 0, rows = 0, vertices = 0;
-    double size = 1.0;   ///< m, cloth (or chain) extent
-    double mass = 0.0;   ///< kg, total simulated mass
+    double size = 1.0;  ///< m, cloth (or chain) extent
+    double mass = 0.0;  ///< kg, total simulated mass
     std::vector<float> inv_mass;
     ~Sim() {
         if (world) drape_world_destroy(world);
@@ -165,7 +167,9 @@ struct Sim {
         die_on(drape_cloth_get_stats(cloth, &s), "drape_cloth_get_stats");
         return s;
     }
-    void set_params(const drape_params& p) { die_on(drape_cloth_set_params(cloth, &p), "drape_cloth_set_params"); }
+    void set_params(const drape_params& p) {
+        die_on(drape_cloth_set_params(cloth, &p), "drape_cloth_set_params");
+    }
     void set_positions(const std::vector<float>& x) {
         die_on(drape_cloth_set_positions(cloth, x.data(), vertices), "drape_cloth_set_positions");
     }
@@ -178,7 +182,7 @@ struct Sim {
 struct GridSpec {
     uint32_t cols = 32, rows = 32;
     double width = 1.0, height = 1.0;
-    double mass = 0.2;  ///< kg: a 1 m^2 cloth of 200 g/m^2
+    double mass = 0.2;     ///< kg: a 1 m^2 cloth of 200 g/m^2
     bool vertical = true;  ///< in the x-y plane hanging down (-y); false: horizontal (x-z plane)
     Pins pins = Pins::TwoTopCorners;
     uint32_t backend = DRAPE_BACKEND_CPU;
@@ -199,8 +203,10 @@ void describe(const GridSpec& s, drape_cloth_desc* cd, drape_grid_desc* g) {
     g->width = float(s.width);
     g->height = float(s.height);
     g->axis_u[0] = 1.0f;
-    if (s.vertical) g->axis_v[1] = -1.0f;
-    else g->axis_v[2] = -1.0f;
+    if (s.vertical)
+        g->axis_v[1] = -1.0f;
+    else
+        g->axis_v[2] = -1.0f;
 }
 
 /// Uniform particle masses (set explicitly, so the double-precision reference is the same
@@ -236,7 +242,8 @@ drape_params params_for(uint32_t model, double scale = 1.0) {
     p.model = model;
     const float ratio[3] = {1.0f, 0.5f, 0.1f};
     for (int gi = 0; gi < 3; ++gi)
-        p.stiffness[gi] = model == DRAPE_MODEL_PBD ? float(std::min(1.0, scale * ratio[gi])) : float(2000.0 * scale * ratio[gi]);
+        p.stiffness[gi] = model == DRAPE_MODEL_PBD ? float(std::min(1.0, scale * ratio[gi]))
+                                                   : float(2000.0 * scale * ratio[gi]);
     return p;
 }
 
@@ -286,9 +293,12 @@ struct Monitor {
             lo[i % 3] = std::min(lo[i % 3], double(x[i]));
             hi[i % 3] = std::max(hi[i % 3], double(x[i]));
         }
-        return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+        return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                         (hi[2] - lo[2]) * (hi[2] - lo[2]));
     }
-    static double energy(const drape_stats& s) { return double(s.kinetic_energy) + s.potential_energy + s.elastic_energy; }
+    static double energy(const drape_stats& s) {
+        return double(s.kinetic_energy) + s.potential_energy + s.elastic_energy;
+    }
 
     /// Call after the scene is set up, before the first step. The speed limit is
     /// 10 x (sqrt(2 g H) + the speed the initial elastic/kinetic energy could give the mass).
@@ -328,7 +338,8 @@ struct Monitor {
         max_strain = std::max(max_strain, ss.max_strain);
         if (energy_check) {
             energy_growth = std::max(energy_growth, (stored_energy(ss, model) - e0) / e_scale);
-            if (energy_growth > kEnergyGrowthLimit) return fail(fmt("energy growth > %g x (M g H + stored)", kEnergyGrowthLimit), t);
+            if (energy_growth > kEnergyGrowthLimit)
+                return fail(fmt("energy growth > %g x (M g H + stored)", kEnergyGrowthLimit), t);
         }
         if (vmax > v_limit) return fail("speed > limit", t);
         if (bbox_diag(prev) > 10.0 * bbox0) return fail("bounding box > 10x", t);
@@ -356,7 +367,8 @@ struct Timing {
 /// 1/60 s / frame_steps (see frame_steps_for). A rolled-back step, or one whose automatic substeps
 /// hit DRAPE_MAX_SUBSTEPS (below the stability bound: it would blow up), makes the row not ok.
 /// Vertex-iterations = particles x substeps per frame x iterations per substep (1 for MASS_SPRING).
-Timing time_cloth(Sim& s, double min_seconds, double max_seconds, uint32_t min_frames, int warmup, uint32_t frame_steps = 1) {
+Timing time_cloth(Sim& s, double min_seconds, double max_seconds, uint32_t min_frames, int warmup,
+                  uint32_t frame_steps = 1) {
     Timing r;
     const float dt = 1.0f / 60.0f / float(frame_steps);
     auto frame = [&] {
@@ -412,10 +424,12 @@ std::vector<uint32_t> available_backends() {
 }
 
 void run_throughput(const Options& o) {
-    const std::vector<uint32_t> sizes = o.quick ? std::vector<uint32_t>{16, 32} : std::vector<uint32_t>{32, 64, 128, 256};
+    const std::vector<uint32_t> sizes =
+        o.quick ? std::vector<uint32_t>{16, 32} : std::vector<uint32_t>{32, 64, 128, 256};
     const auto backends = available_backends();
-    Csv csv(o.out + "/throughput.csv", "size,vertices,model,backend,threads,substeps,iterations,frame_steps,steps,ms_median,ms_min,"
-                                       "vertex_iter_per_s,max_strain,rms_strain,ok");
+    Csv csv(o.out + "/throughput.csv",
+            "size,vertices,model,backend,threads,substeps,iterations,frame_steps,steps,ms_median,ms_min,"
+            "vertex_iter_per_s,max_strain,rms_strain,ok");
     g_progress.start("throughput", int(sizes.size() * 3 * backends.size()));
     for (uint32_t n : sizes)
         for (uint32_t m : kModels)
@@ -434,11 +448,12 @@ void run_throughput(const Options& o) {
                 // nothing the later ones would not).
                 const bool slow = m == DRAPE_MODEL_MASS_SPRING;
                 Timing t = o.quick ? time_cloth(*sim, 0.1, 1.0, slow ? 1 : 5, slow ? 0 : 2, frame_steps)
-                                   : time_cloth(*sim, 0.6, 4.0, slow ? (n >= 256 ? 1 : 3) : 9, slow ? (n >= 128 ? 0 : 1) : 3,
-                                                frame_steps);
-                csv.row("%u,%u,%s,%s,%u,%u,%u,%u,%u,%.4f,%.4f,%.4g,%.5g,%.5g,%d", n, sim->vertices, model_name(m),
-                        backend_name(b), b == DRAPE_BACKEND_CPU ? 1u : o.threads, t.substeps, t.iterations, frame_steps,
-                        t.steps, t.ms_median, t.ms_min, t.vit_per_s, t.max_strain, t.rms_strain, int(t.ok));
+                                   : time_cloth(*sim, 0.6, 4.0, slow ? (n >= 256 ? 1 : 3) : 9,
+                                                slow ? (n >= 128 ? 0 : 1) : 3, frame_steps);
+                csv.row("%u,%u,%s,%s,%u,%u,%u,%u,%u,%.4f,%.4f,%.4g,%.5g,%.5g,%d", n, sim->vertices,
+                        model_name(m), backend_name(b), b == DRAPE_BACKEND_CPU ? 1u : o.threads, t.substeps,
+                        t.iterations, frame_steps, t.steps, t.ms_median, t.ms_min, t.vit_per_s, t.max_strain,
+                        t.rms_strain, int(t.ok));
                 g_progress.tick(std::to_string(n) + "^2 " + model_name(m) + " " + backend_name(b) + " " +
                                 fmt("%.3g Mvit/s", t.vit_per_s * 1e-6));
             }
@@ -446,9 +461,11 @@ void run_throughput(const Options& o) {
 }
 
 void run_threads(const Options& o) {
-    const std::vector<uint32_t> sizes = o.quick ? std::vector<uint32_t>{32} : std::vector<uint32_t>{64, 128, 256};
+    const std::vector<uint32_t> sizes =
+        o.quick ? std::vector<uint32_t>{32} : std::vector<uint32_t>{64, 128, 256};
     const uint32_t counts[] = {1, 2, 3, 4};
-    Csv csv(o.out + "/threads.csv", "size,vertices,model,backend,threads,ms_median,vertex_iter_per_s,speedup_vs_cpu");
+    Csv csv(o.out + "/threads.csv",
+            "size,vertices,model,backend,threads,ms_median,vertex_iter_per_s,speedup_vs_cpu");
     g_progress.start("threads", int(sizes.size() * 5));
     for (uint32_t n : sizes) {
         double base_ms = NAN;
@@ -463,7 +480,8 @@ void run_threads(const Options& o) {
             if (k < 0) base_ms = t.ms_median;
             csv.row("%u,%u,xpbd,%s,%u,%.4f,%.4g,%.3f", n, sim->vertices, backend_name(gs.backend), gs.threads,
                     t.ms_median, t.vit_per_s, base_ms / t.ms_median);
-            g_progress.tick(std::to_string(n) + "^2 " + backend_name(gs.backend) + " x" + std::to_string(gs.threads));
+            g_progress.tick(std::to_string(n) + "^2 " + backend_name(gs.backend) + " x" +
+                            std::to_string(gs.threads));
         }
     }
     g_progress.finish();
@@ -488,17 +506,17 @@ std::vector<Config> precision_configs(const Options& o, bool chain) {
             for (uint32_t i = 1; s * i <= max_cost; i *= 2)
                 if (!quick_diag || s * i == 4 || s * i == 16) out.push_back({m, s, i});
         if (!o.quick && m == DRAPE_MODEL_XPBD)
-            for (Config c : {Config{m, 128, 1}, Config{m, 64, 2}, Config{m, 256, 1}, Config{m, 128, 2}}) out.push_back(c);
+            for (Config c : {Config{m, 128, 1}, Config{m, 64, 2}, Config{m, 256, 1}, Config{m, 128, 2}})
+                out.push_back(c);
     }
     // MASS_SPRING: automatic (the stability bound: 143 at 32^2) and two finer steps. Settings
     // below the bound only blow up, and 1000 substeps cost more than the whole XPBD sweep.
-    std::vector<uint32_t> ms = o.quick ? std::vector<uint32_t>{0, 64}
-                                       : std::vector<uint32_t>{0, 400};
+    std::vector<uint32_t> ms = o.quick ? std::vector<uint32_t>{0, 64} : std::vector<uint32_t>{0, 400};
     if (chain) ms = o.quick ? std::vector<uint32_t>{0} : std::vector<uint32_t>{0, 64, 256, 1000};
     for (uint32_t s : ms) out.push_back({DRAPE_MODEL_MASS_SPRING, s, 1});
     // IMPLICIT: the automatic budget (4 x 4) and cheaper / dearer ones.
-    for (Config c : {Config{DRAPE_MODEL_IMPLICIT, 0, 0}, Config{DRAPE_MODEL_IMPLICIT, 1, 1}, Config{DRAPE_MODEL_IMPLICIT, 1, 4},
-                     Config{DRAPE_MODEL_IMPLICIT, 2, 2}})
+    for (Config c : {Config{DRAPE_MODEL_IMPLICIT, 0, 0}, Config{DRAPE_MODEL_IMPLICIT, 1, 1},
+                     Config{DRAPE_MODEL_IMPLICIT, 1, 4}, Config{DRAPE_MODEL_IMPLICIT, 2, 2}})
         if (!o.quick || c.substeps == 0) out.push_back(c);
     return out;
 }
@@ -560,8 +578,10 @@ int rest_runs(const Options& o) {
 }
 
 void run_rest(const Options& o) {
-    Csv csv(o.out + "/rest.csv", "scene,size,model,setting,substeps,iterations,max_stretch,is_default,cpu_ms_median,wall_ms_median,rounds,"
-                                 "vertex_error,lowest_error,length_error,max_strain,ref_max_strain,ok");
+    Csv csv(o.out + "/rest.csv",
+            "scene,size,model,setting,substeps,iterations,max_stretch,is_default,cpu_ms_median,wall_ms_"
+            "median,rounds,"
+            "vertex_error,lowest_error,length_error,max_strain,ref_max_strain,ok");
     const int steps = o.quick ? 180 : 600, rounds = o.quick ? 3 : 5;
     g_progress.start("rest", rest_runs(o));
     for (const char* scene : {"curtain", "sheet"}) {
@@ -595,7 +615,8 @@ void run_rest(const Options& o) {
             size_t low_v = 0;
             for (size_t v = 0; v < mass.size(); ++v) {
                 double d2 = 0;
-                for (int a = 0; a < 3; ++a) d2 += (x[3 * v + a] - rest[3 * v + a]) * (x[3 * v + a] - rest[3 * v + a]);
+                for (int a = 0; a < 3; ++a)
+                    d2 += (x[3 * v + a] - rest[3 * v + a]) * (x[3 * v + a] - rest[3 * v + a]);
                 largest = std::max(largest, std::sqrt(d2));
                 if (x[3 * v + 1] < low_ref) low_ref = x[3 * v + 1], low_v = v, low_rest = rest[3 * v + 1];
             }
@@ -634,8 +655,8 @@ void run_rest(const Options& o) {
                 for (int step = 0; step < to_rest; ++step)
                     if (drape_cloth_step(r.sim->cloth, 1.0f / 60) != DRAPE_OK) r.ok = false;
                 r.reps = std::max(1, std::min(50, int(50.0 / ((thread_cpu_ms() - t0) / to_rest))));
-                g_progress.tick(std::string(scene) + " " + std::to_string(n) + "^2 " + model_name(rc.c.model) +
-                                (r.at_rest ? " to rest" : " (timing only)"));
+                g_progress.tick(std::string(scene) + " " + std::to_string(n) + "^2 " +
+                                model_name(rc.c.model) + (r.at_rest ? " to rest" : " (timing only)"));
                 runs.push_back(std::move(r));
             }
             for (int round = 0; round < rounds; ++round)
@@ -645,22 +666,27 @@ void run_rest(const Options& o) {
                     for (int k = 0; k < r.reps; ++k)
                         if (drape_cloth_step(r.sim->cloth, 1.0f / 60) != DRAPE_OK) r.ok = false;
                     r.cpu_ms.push_back((thread_cpu_ms() - c0) / r.reps);
-                    r.wall_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - w0).count() / r.reps);
+                    r.wall_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - w0).count() /
+                                        r.reps);
                 }
             for (const Run& r : runs) {
                 const std::vector<float> xs = r.sim->positions();
                 const double e_vertex = r.at_rest ? max_distance(xs, x) / largest : NAN;
-                const double e_low = r.at_rest ? std::fabs(xs[3 * low_v + 1] - low_ref) / std::fabs(low_ref - low_rest) : NAN;
-                const double e_length = r.at_rest ? std::fabs(xs[3 * low_v + 1] - low_ref) / std::fabs(low_ref) : NAN;
+                const double e_low =
+                    r.at_rest ? std::fabs(xs[3 * low_v + 1] - low_ref) / std::fabs(low_ref - low_rest) : NAN;
+                const double e_length =
+                    r.at_rest ? std::fabs(xs[3 * low_v + 1] - low_ref) / std::fabs(low_ref) : NAN;
                 const drape_stats ss = r.sim->stats();
                 const Config& c = r.rc.c;
-                const std::string setting = c.substeps == 0 && c.iterations == 0 ? "auto"
-                                            : c.model == DRAPE_MODEL_MASS_SPRING ? std::to_string(c.substeps)
-                                            : std::to_string(c.substeps) + "x" + std::to_string(c.iterations);
-                csv.row("%s,%u,%s,%s,%u,%u,%g,%d,%.4f,%.4f,%d,%.5g,%.5g,%.5g,%.5g,%.5g,%d", scene, n, model_name(c.model),
-                        setting.c_str(), ss.substeps, ss.iterations, double(r.rc.max_stretch), int(r.is_default),
-                        median(r.cpu_ms), median(r.wall_ms), rounds, e_vertex, e_low, e_length, ss.max_strain, ref_strain,
-                        int(r.ok));
+                const std::string setting =
+                    c.substeps == 0 && c.iterations == 0 ? "auto"
+                    : c.model == DRAPE_MODEL_MASS_SPRING
+                        ? std::to_string(c.substeps)
+                        : std::to_string(c.substeps) + "x" + std::to_string(c.iterations);
+                csv.row("%s,%u,%s,%s,%u,%u,%g,%d,%.4f,%.4f,%d,%.5g,%.5g,%.5g,%.5g,%.5g,%d", scene, n,
+                        model_name(c.model), setting.c_str(), ss.substeps, ss.iterations,
+                        double(r.rc.max_stretch), int(r.is_default), median(r.cpu_ms), median(r.wall_ms),
+                        rounds, e_vertex, e_low, e_length, ss.max_strain, ref_strain, int(r.ok));
             }
         }
     }
@@ -748,12 +774,12 @@ void run_precision_cloth(const Options& o, Csv& csv) {
             drift_end = (Monitor::energy(su->stats()) - e0) / (gs.mass * kG * gs.height);
             drift = std::max(drift, std::fabs(drift_end));
         }
-        csv.row("two_corners,%u,%s,cpu,%u,%u,%u,%.4f,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%.3g,%.5g", n, model_name(c.model),
-                ss.substeps, ss.iterations, c.substeps == 0 ? 1 : 0, median(ms), ss.max_strain, ss.rms_strain,
-                ref_strain, std::fabs(ss.max_strain - ref_strain) / ref_strain, e2 / gs.height, drift, drift_end, int(ok),
-                double(p.max_stretch), NAN);
-        g_progress.tick(std::string("cloth ") + model_name(c.model) + " s" + std::to_string(ss.substeps) + " i" +
-                        std::to_string(ss.iterations));
+        csv.row("two_corners,%u,%s,cpu,%u,%u,%u,%.4f,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%.3g,%.5g", n,
+                model_name(c.model), ss.substeps, ss.iterations, c.substeps == 0 ? 1 : 0, median(ms),
+                ss.max_strain, ss.rms_strain, ref_strain, std::fabs(ss.max_strain - ref_strain) / ref_strain,
+                e2 / gs.height, drift, drift_end, int(ok), double(p.max_stretch), NAN);
+        g_progress.tick(std::string("cloth ") + model_name(c.model) + " s" + std::to_string(ss.substeps) +
+                        " i" + std::to_string(ss.iterations));
     }
 }
 
@@ -765,13 +791,15 @@ void run_precision_chain(const Options& o, Csv& csv) {
     const double L0 = 0.05, m = 0.005;
     const float dt = 1.0f / 60.0f;
     const double seconds = o.quick ? 1.0 : 2.0;
-    const std::vector<double> ratios = o.quick ? std::vector<double>{1e3} : std::vector<double>{1, 1e2, 1e4, 1e5};
+    const std::vector<double> ratios =
+        o.quick ? std::vector<double>{1e3} : std::vector<double>{1, 1e2, 1e4, 1e5};
     for (double ratio : ratios) {
         const double M = ratio * N * m;
         const double k = (N * m + M) * kG / (0.01 * L0);
         std::vector<float> exact(size_t(N + 1) * 3, 0.0f);
         for (uint32_t j = 0; j <= N; ++j)
-            exact[3 * j + 1] = -float(j * L0 + (m * kG / k) * (double(j) * N - 0.5 * j * (j - 1.0)) + M * kG * j / k);
+            exact[3 * j + 1] =
+                -float(j * L0 + (m * kG / k) * (double(j) * N - 0.5 * j * (j - 1.0)) + M * kG * j / k);
         const double ext_exact = -exact[3 * N + 1] - N * L0;
         for (const Config& c : precision_configs(o, true)) {
             GridSpec gs;
@@ -787,8 +815,10 @@ void run_precision_chain(const Options& o, Csv& csv) {
             w[N] = float(1.0 / (m + M));
             sim->set_inverse_masses(w);
             drape_params p = params_for(c.model);
-            if (c.model == DRAPE_MODEL_PBD) p.stiffness[0] = 1.0f;
-            else p.stiffness[0] = float(k);
+            if (c.model == DRAPE_MODEL_PBD)
+                p.stiffness[0] = 1.0f;
+            else
+                p.stiffness[0] = float(k);
             p.stiffness[1] = p.stiffness[2] = 0;
             p.substeps = c.substeps;
             p.iterations = c.iterations;
@@ -803,7 +833,8 @@ void run_precision_chain(const Options& o, Csv& csv) {
                 if (st != DRAPE_OK) ok = false;
                 const std::vector<float> x = sim->positions();
                 for (uint32_t j = 0; j <= N; ++j) {
-                    double dx = x[3 * j] - exact[3 * j], dy = x[3 * j + 1] - exact[3 * j + 1], dz = x[3 * j + 2] - exact[3 * j + 2];
+                    double dx = x[3 * j] - exact[3 * j], dy = x[3 * j + 1] - exact[3 * j + 1],
+                           dz = x[3 * j + 2] - exact[3 * j + 2];
                     double e = std::sqrt(dx * dx + dy * dy + dz * dz);
                     e2 = std::max(e2, std::isfinite(e) ? e : INFINITY);
                 }
@@ -811,12 +842,13 @@ void run_precision_chain(const Options& o, Csv& csv) {
             const drape_stats ss = sim->stats();
             const std::vector<float> x = sim->positions();
             const double ext = -x[3 * N + 1] - N * L0;
-            csv.row("chain_1e%g,%u,%s,cpu,%u,%u,%u,%.4f,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%.3g,%.5g", std::log10(ratio), N + 1,
-                    model_name(c.model), ss.substeps, ss.iterations, c.substeps == 0 ? 1 : 0, median(ms), ss.max_strain,
-                    ss.rms_strain, 0.01, std::fabs(ss.max_strain - 0.01) / 0.01, e2 / (N * L0),
+            csv.row("chain_1e%g,%u,%s,cpu,%u,%u,%u,%.4f,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%.3g,%.5g",
+                    std::log10(ratio), N + 1, model_name(c.model), ss.substeps, ss.iterations,
+                    c.substeps == 0 ? 1 : 0, median(ms), ss.max_strain, ss.rms_strain, 0.01,
+                    std::fabs(ss.max_strain - 0.01) / 0.01, e2 / (N * L0),
                     std::fabs(ext - ext_exact) / ext_exact, NAN, int(ok), double(p.max_stretch), NAN);
-            g_progress.tick(std::string("chain 1e") + fmt("%g ", std::log10(ratio)) + model_name(c.model) + " s" +
-                            std::to_string(ss.substeps) + " i" + std::to_string(ss.iterations));
+            g_progress.tick(std::string("chain 1e") + fmt("%g ", std::log10(ratio)) + model_name(c.model) +
+                            " s" + std::to_string(ss.substeps) + " i" + std::to_string(ss.iterations));
         }
     }
 }
@@ -833,7 +865,9 @@ void run_precision_tethers(const Options& o, Csv& csv) {
     const float dt = 1.0f / 60.0f;
     drape_params def{};
     die_on(drape_params_default(&def), "drape_params_default");
-    const Config cfgs[] = {{DRAPE_MODEL_XPBD, 0, def.iterations}, {DRAPE_MODEL_PBD, 0, def.iterations}, {DRAPE_MODEL_XPBD, 4, 4}};
+    const Config cfgs[] = {{DRAPE_MODEL_XPBD, 0, def.iterations},
+                           {DRAPE_MODEL_PBD, 0, def.iterations},
+                           {DRAPE_MODEL_XPBD, 4, 4}};
     for (uint32_t n : sizes) {
         const TwoCornerRef ref = two_corner_reference(o, n);
         GridSpec gs;
@@ -857,12 +891,15 @@ void run_precision_tethers(const Options& o, Csv& csv) {
                 }
                 const drape_stats ss = sim->stats();
                 const double e2 = max_distance(sim->positions(), ref.x);
-                csv.row("two_corners_%u,%u,%s,cpu,%u,%u,%u,%.4f,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%.3g,%.5g", n, n,
-                        model_name(c.model), ss.substeps, ss.iterations, c.substeps == 0 ? 1 : 0, median(ms), ss.max_strain,
-                        ss.rms_strain, ref.max_strain, std::fabs(ss.max_strain - ref.max_strain) / ref.max_strain,
-                        e2 / gs.height, NAN, NAN, int(ok), double(stretch), double(peak));
-                g_progress.tick(fmt("tethers %g ", stretch) + std::to_string(n) + "^2 " + model_name(c.model) + " s" +
-                                std::to_string(ss.substeps) + " i" + std::to_string(ss.iterations));
+                csv.row(
+                    "two_corners_%u,%u,%s,cpu,%u,%u,%u,%.4f,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%.3g,%.5g",
+                    n, n, model_name(c.model), ss.substeps, ss.iterations, c.substeps == 0 ? 1 : 0,
+                    median(ms), ss.max_strain, ss.rms_strain, ref.max_strain,
+                    std::fabs(ss.max_strain - ref.max_strain) / ref.max_strain, e2 / gs.height, NAN, NAN,
+                    int(ok), double(stretch), double(peak));
+                g_progress.tick(fmt("tethers %g ", stretch) + std::to_string(n) + "^2 " +
+                                model_name(c.model) + " s" + std::to_string(ss.substeps) + " i" +
+                                std::to_string(ss.iterations));
             }
     }
 }
@@ -882,7 +919,8 @@ std::vector<Config> sphere_configs(const Options& o) {
         for (uint32_t s : {1u, 4u, 16u, 64u, 256u})
             for (uint32_t i : {1u, 4u, 16u})
                 if (s * i <= (o.quick ? 16u : 256u) && (!o.quick || s * i >= 4)) out.push_back({m, s, i});
-    for (uint32_t s : o.quick ? std::vector<uint32_t>{0} : std::vector<uint32_t>{0, 500}) out.push_back({DRAPE_MODEL_MASS_SPRING, s, 1});
+    for (uint32_t s : o.quick ? std::vector<uint32_t>{0} : std::vector<uint32_t>{0, 500})
+        out.push_back({DRAPE_MODEL_MASS_SPRING, s, 1});
     out.push_back({DRAPE_MODEL_IMPLICIT, 0, 0});  // its automatic budget
     return out;
 }
@@ -942,25 +980,27 @@ void run_precision_sphere(const Options& o, Csv& csv) {
     const double self_error = max_distance(half.x, xr);
     {
         std::ofstream f(o.out + "/reference.csv", std::ios::app);
-        f << "sphere_drape," << n << "," << self_error << "," << ref.stats.max_strain << ",xpbd_1000x1_vs_500x1\n";
+        f << "sphere_drape," << n << "," << self_error << "," << ref.stats.max_strain
+          << ",xpbd_1000x1_vs_500x1\n";
     }
     for (const Config& c : sphere_configs(o)) {
         const Run r = run(c);
         const double e2 = max_distance(r.x, xr);
-        csv.row("sphere_drape,%u,%s,cpu,%u,%u,%u,%.4f,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%.3g,%.5g", n, model_name(c.model),
-                r.stats.substeps, r.stats.iterations, c.substeps == 0 ? 1 : 0, median(r.ms), r.stats.max_strain,
-                r.stats.rms_strain, ref.stats.max_strain,
-                std::fabs(r.stats.max_strain - ref.stats.max_strain) / std::max(ref.stats.max_strain, 1e-6f), e2 / gs.width,
-                NAN, NAN, int(r.ok), double(params_for(c.model).max_stretch), NAN);
-        g_progress.tick(std::string("sphere ") + model_name(c.model) + " s" + std::to_string(r.stats.substeps) + " i" +
-                        std::to_string(r.stats.iterations));
+        csv.row("sphere_drape,%u,%s,cpu,%u,%u,%u,%.4f,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%.3g,%.5g", n,
+                model_name(c.model), r.stats.substeps, r.stats.iterations, c.substeps == 0 ? 1 : 0,
+                median(r.ms), r.stats.max_strain, r.stats.rms_strain, ref.stats.max_strain,
+                std::fabs(r.stats.max_strain - ref.stats.max_strain) / std::max(ref.stats.max_strain, 1e-6f),
+                e2 / gs.width, NAN, NAN, int(r.ok), double(params_for(c.model).max_stretch), NAN);
+        g_progress.tick(std::string("sphere ") + model_name(c.model) + " s" +
+                        std::to_string(r.stats.substeps) + " i" + std::to_string(r.stats.iterations));
     }
 }
 
 void run_precision(const Options& o) {
     // energy_drift for chains is the relative error of the tip extension (column reused, see header).
     Csv csv(o.out + "/precision.csv",
-            "scene,size,model,backend,substeps,iterations,auto_substeps,ms_median,max_strain,rms_strain,ref_max_strain,"
+            "scene,size,model,backend,substeps,iterations,auto_substeps,ms_median,max_strain,rms_strain,ref_"
+            "max_strain,"
             "e1_rel_error,e2,energy_drift_or_ext_error,energy_drift_end,ok,max_stretch,peak_max_strain");
     const int cloth = int(precision_configs(o, false).size());
     const int chain = int(precision_configs(o, true).size()) * (o.quick ? 1 : 4);
@@ -984,8 +1024,8 @@ struct StressCase {
 };
 
 /// Runs `seconds` of frames (dt from dt_of(k)) with the monitor; returns survived.
-bool run_monitored(Sim& s, uint32_t model, double seconds, const std::function<float(int)>& dt_of, Monitor& mon,
-                   uint32_t* substeps = nullptr, bool check_energy = true) {
+bool run_monitored(Sim& s, uint32_t model, double seconds, const std::function<float(int)>& dt_of,
+                   Monitor& mon, uint32_t* substeps = nullptr, bool check_energy = true) {
     mon.begin(s, model, check_energy);
     double t = 0;
     for (int k = 0; t < seconds - 1e-9; ++k) {
@@ -1015,15 +1055,18 @@ void self_check_energy_criterion() {
         p.substeps = substeps;
         sim->set_params(p);
         Monitor mon;
-        run_monitored(*sim, model, 0.5, [](int) { return 1.0f / 60; }, mon);
+        run_monitored(
+            *sim, model, 0.5, [](int) { return 1.0f / 60; }, mon);
         return mon;
     };
     const Monitor growing = run(DRAPE_MODEL_MASS_SPRING, 10, 1);
     const Monitor still = run(DRAPE_MODEL_XPBD, 1e9, 0);
     if (growing.criterion.rfind("energy growth", 0) != 0 || !still.criterion.empty()) {
-        std::fprintf(stderr, "\ndrape_bench: energy criterion self-check failed: unstable Verlet cloth -> '%s' (growth %.3g), "
-                             "still stiff XPBD cloth -> '%s' (growth %.3g)\n",
-                     growing.criterion.c_str(), growing.energy_growth, still.criterion.c_str(), still.energy_growth);
+        std::fprintf(
+            stderr,
+            "\ndrape_bench: energy criterion self-check failed: unstable Verlet cloth -> '%s' (growth %.3g), "
+            "still stiff XPBD cloth -> '%s' (growth %.3g)\n",
+            growing.criterion.c_str(), growing.energy_growth, still.criterion.c_str(), still.energy_growth);
         std::exit(1);
     }
 }
@@ -1031,7 +1074,8 @@ void self_check_energy_criterion() {
 void run_stress(const Options& o) {
     self_check_energy_criterion();
     Csv csv(o.out + "/stress.csv",
-            "test,case,model,stiffness,dt,substeps,h,survived,time_to_failure_s,criterion,max_strain,energy_growth,seconds");
+            "test,case,model,stiffness,dt,substeps,h,survived,time_to_failure_s,criterion,max_strain,energy_"
+            "growth,seconds");
     const uint32_t n = o.quick ? 8 : 16;
     const double secs = o.quick ? 0.25 : 2.0;
     std::vector<double> ks, dts;
@@ -1054,16 +1098,19 @@ void run_stress(const Options& o) {
                            {"mass_spring", DRAPE_MODEL_MASS_SPRING, 0},
                            {"pbd", DRAPE_MODEL_PBD, 0},
                            {"xpbd", DRAPE_MODEL_XPBD, 0}};
-    const std::vector<uint32_t> res = o.quick ? std::vector<uint32_t>{8, 16} : std::vector<uint32_t>{16, 32, 64, 128, 256};
+    const std::vector<uint32_t> res =
+        o.quick ? std::vector<uint32_t>{8, 16} : std::vector<uint32_t>{16, 32, 64, 128, 256};
     int total = 0;
-    for (const auto& c : s1cfg) total += int((c.model == DRAPE_MODEL_PBD ? pbd_fractions.size() : ks.size()) * dts.size());
+    for (const auto& c : s1cfg)
+        total += int((c.model == DRAPE_MODEL_PBD ? pbd_fractions.size() : ks.size()) * dts.size());
     total += 3 * 12 + 3 * 10 + 3 + 3 * 3 + 3 * 2 + 3 * int(res.size()) + 2 * int(res.size()) + 3 * 3;
     g_progress.start("stress", total);
     auto record = [&](const std::string& test, const std::string& label, uint32_t model, double k, double dt,
                       uint32_t substeps, bool ok, const Monitor& mon, double seconds) {
-        csv.row("%s,%s,%s,%.6g,%.6g,%u,%.6g,%d,%.4g,%s,%.4g,%.3g,%.3g", test.c_str(), label.c_str(), model_name(model), k,
-                dt, substeps, substeps ? dt / substeps : NAN, int(ok), ok ? NAN : mon.t_fail,
-                ok ? "" : mon.criterion.c_str(), mon.max_strain, mon.energy_check ? mon.energy_growth : NAN, seconds);
+        csv.row("%s,%s,%s,%.6g,%.6g,%u,%.6g,%d,%.4g,%s,%.4g,%.3g,%.3g", test.c_str(), label.c_str(),
+                model_name(model), k, dt, substeps, substeps ? dt / substeps : NAN, int(ok),
+                ok ? NAN : mon.t_fail, ok ? "" : mon.criterion.c_str(), mon.max_strain,
+                mon.energy_check ? mon.energy_growth : NAN, seconds);
         g_progress.tick(test + " " + label + " " + model_name(model) + (ok ? " ok" : " FAIL"));
     };
     std::ofstream s8(o.out + "/s8_colliders.csv");
@@ -1091,7 +1138,8 @@ void run_stress(const Options& o) {
                 // 0.5 s per cell: failures in the full runs came within 0.2 s, and stiff
                 // MASS_SPRING cells run 1000 substeps per frame.
                 const double s1 = std::min(secs, 0.5);
-                bool ok = run_monitored(*sim, c.model, s1, [&](int) { return float(dt); }, mon, &sub);
+                bool ok = run_monitored(
+                    *sim, c.model, s1, [&](int) { return float(dt); }, mon, &sub);
                 record("S1", c.label, c.model, k, dt, sub, ok, mon, s1);
             }
     }
@@ -1106,7 +1154,8 @@ void run_stress(const Options& o) {
                 std::uniform_real_distribution<float> u(0.5f, 1.5f);
                 Monitor mon;
                 uint32_t sub = 0;
-                bool ok = run_monitored(*sim, m, secs, [&](int) { return float(dt) * (jitter ? u(rng) : 1.0f); }, mon, &sub);
+                bool ok = run_monitored(
+                    *sim, m, secs, [&](int) { return float(dt) * (jitter ? u(rng) : 1.0f); }, mon, &sub);
                 record("S2", jitter ? "jitter" : "fixed", m, 0, dt, sub, ok, mon, secs);
             }
     // S3 mass ratio: heavy chain tip (stiffness scaled so the exact top strain is 1%, starts
@@ -1133,7 +1182,8 @@ void run_stress(const Options& o) {
             sim->set_params(p);
             Monitor mon;
             uint32_t sub = 0;
-            bool ok = run_monitored(*sim, m, secs, [](int) { return 1.0f / 60; }, mon, &sub);
+            bool ok = run_monitored(
+                *sim, m, secs, [](int) { return 1.0f / 60; }, mon, &sub);
             record("S3", "chain_tip_1:" + fmt("%g", ratio), m, p.stiffness[0], 1.0 / 60, sub, ok, mon, secs);
         }
     for (uint32_t m : kModels)
@@ -1145,7 +1195,8 @@ void run_stress(const Options& o) {
             sim->set_params(params_for(m));
             Monitor mon;
             uint32_t sub = 0;
-            bool ok = run_monitored(*sim, m, secs, [](int) { return 1.0f / 60; }, mon, &sub);
+            bool ok = run_monitored(
+                *sim, m, secs, [](int) { return 1.0f / 60; }, mon, &sub);
             record("S3", "heavy_corner_1:" + fmt("%g", ratio), m, 0, 1.0 / 60, sub, ok, mon, secs);
         }
     // S3 heavy sphere on light cloth. Colliders are kinematic in the C API (two-way coupling does
@@ -1163,7 +1214,9 @@ void run_stress(const Options& o) {
         sim->set_inverse_masses(w);
         sim->set_params(params_for(m));
         const float r = 0.15f;
-        auto sphere_at = [&](double t) { return bench_sphere(0.5f, float(r + 0.2 - 0.6 * std::min(t, 1.0)), -0.5f, r); };
+        auto sphere_at = [&](double t) {
+            return bench_sphere(0.5f, float(r + 0.2 - 0.6 * std::min(t, 1.0)), -0.5f, r);
+        };
         drape_collider c0 = sphere_at(0);
         die_on(drape_cloth_set_colliders(sim->cloth, &c0, 1), "drape_cloth_set_colliders");
         Monitor mon;
@@ -1182,7 +1235,8 @@ void run_stress(const Options& o) {
             const std::vector<float>& x = mon.prev;
             int bad = 0;
             for (size_t i = 0; i < x.size(); i += 3) {
-                double dx = x[i] - c.position[0], dy = x[i + 1] - c.position[1], dz = x[i + 2] - c.position[2];
+                double dx = x[i] - c.position[0], dy = x[i + 1] - c.position[1],
+                       dz = x[i + 2] - c.position[2];
                 bad += dx * dx + dy * dy + dz * dz < double(r) * r * 0.98;
             }
             worst = std::max(worst, double(bad) / sim->vertices);
@@ -1207,7 +1261,8 @@ void run_stress(const Options& o) {
             Monitor mon;
             uint32_t sub = 0;
             // PBD cannot state what its stretched start stores.
-            bool ok = run_monitored(*sim, m, secs, [](int) { return 1.0f / 60; }, mon, &sub, m != DRAPE_MODEL_PBD);
+            bool ok = run_monitored(
+                *sim, m, secs, [](int) { return 1.0f / 60; }, mon, &sub, m != DRAPE_MODEL_PBD);
             record("S5", "stretched_" + fmt("%gx", factor), m, 0, 1.0 / 60, sub, ok, mon, secs);
         }
         auto sim = make_grid(base_grid(true));
@@ -1216,11 +1271,13 @@ void run_stress(const Options& o) {
         for (int i = 0; i < 60; ++i) timed_step(*sim, 1.0f / 60, &st);  // settle
         std::vector<float> x = sim->positions();
         for (uint32_t r = n / 2 - 1; r <= n / 2 + 1; ++r)
-            for (uint32_t c = n / 2 - 1; c <= n / 2 + 1; ++c) x[3 * (r * n + c) + 2] += 1.0f;  // 1 m = cloth size
+            for (uint32_t c = n / 2 - 1; c <= n / 2 + 1; ++c)
+                x[3 * (r * n + c) + 2] += 1.0f;  // 1 m = cloth size
         sim->set_positions(x);
         Monitor mon;
         uint32_t sub = 0;
-        bool ok = run_monitored(*sim, m, secs, [](int) { return 1.0f / 60; }, mon, &sub, m != DRAPE_MODEL_PBD);
+        bool ok = run_monitored(
+            *sim, m, secs, [](int) { return 1.0f / 60; }, mon, &sub, m != DRAPE_MODEL_PBD);
         record("S5", "pull_3x3_1m", m, 0, 1.0 / 60, sub, ok, mon, secs);
     }
     // S7 starved budget: 1 substep, 1 iteration, stiff material (1e6 N/m; PBD fraction 1).
@@ -1232,7 +1289,8 @@ void run_stress(const Options& o) {
         sim->set_params(p);
         Monitor mon;
         uint32_t sub = 0;
-        bool ok = run_monitored(*sim, m, secs, [](int) { return 1.0f / 60; }, mon, &sub);
+        bool ok = run_monitored(
+            *sim, m, secs, [](int) { return 1.0f / 60; }, mon, &sub);
         record("S7", "1substep_1iter_stiff", m, p.stiffness[0], 1.0 / 60, sub, ok, mon, secs);
         // Same stiff material with the default budget, for comparison.
         auto sim2 = make_grid(base_grid(false));
@@ -1242,7 +1300,8 @@ void run_stress(const Options& o) {
         p.iterations = def.iterations;
         sim2->set_params(p);
         Monitor mon2;
-        ok = run_monitored(*sim2, m, secs, [](int) { return 1.0f / 60; }, mon2, &sub);
+        ok = run_monitored(
+            *sim2, m, secs, [](int) { return 1.0f / 60; }, mon2, &sub);
         record("S7", "default_budget_stiff", m, p.stiffness[0], 1.0 / 60, sub, ok, mon2, secs);
     }
     // S8 fast collider: a sphere (r = 0.1 m) crosses the hanging cloth's middle along z at
@@ -1254,7 +1313,9 @@ void run_stress(const Options& o) {
             auto sim = make_grid(base_grid(true));
             sim->set_params(params_for(m));
             const float r = 0.1f;
-            auto sphere_at = [&](double t) { return bench_sphere(0.5f, -0.5f, float(-0.5 + std::min(1.0, speed * t)), r); };
+            auto sphere_at = [&](double t) {
+                return bench_sphere(0.5f, -0.5f, float(-0.5 + std::min(1.0, speed * t)), r);
+            };
             drape_collider c0 = sphere_at(0);
             die_on(drape_cloth_set_colliders(sim->cloth, &c0, 1), "drape_cloth_set_colliders");
             Monitor mon;
@@ -1270,16 +1331,18 @@ void run_stress(const Options& o) {
                 const std::vector<float>& x = mon.prev;
                 int bad = 0;
                 for (size_t i = 0; i < x.size(); i += 3) {
-                    double dx = x[i] - c.position[0], dy = x[i + 1] - c.position[1], dz = x[i + 2] - c.position[2];
+                    double dx = x[i] - c.position[0], dy = x[i + 1] - c.position[1],
+                           dz = x[i + 2] - c.position[2];
                     bool inside = dx * dx + dy * dy + dz * dz < double(r) * r * 0.98;
                     bool behind = dx * dx + dy * dy < double(r) * r * 0.98 && dz < 0;
                     bad += inside || behind;
                 }
                 worst = std::max(worst, double(bad) / sim->vertices);
             }
-            csv.row("S8,sphere_%gm/s,%s,0,%.6g,%u,%.6g,%d,%.4g,%s,%.4g,%.3g,%.3g", speed, model_name(m), double(dt),
-                    sim->stats().substeps, NAN, int(ok), ok ? NAN : mon.t_fail, ok ? "" : mon.criterion.c_str(),
-                    mon.max_strain, mon.energy_check ? mon.energy_growth : NAN, secs);
+            csv.row("S8,sphere_%gm/s,%s,0,%.6g,%u,%.6g,%d,%.4g,%s,%.4g,%.3g,%.3g", speed, model_name(m),
+                    double(dt), sim->stats().substeps, NAN, int(ok), ok ? NAN : mon.t_fail,
+                    ok ? "" : mon.criterion.c_str(), mon.max_strain,
+                    mon.energy_check ? mon.energy_growth : NAN, secs);
             // fraction_inside_or_behind goes to its own file (the stress table keeps its columns)
             s8 << "S8," << speed << "," << model_name(m) << "," << worst << "," << int(ok) << "\n";
             g_progress.tick(fmt("S8 %g m/s ", speed) + model_name(m) + fmt(" %.3f", worst));
@@ -1298,7 +1361,8 @@ void run_stress(const Options& o) {
             Monitor mon;
             uint32_t sub = 0;
             const double s10 = o.quick ? 0.5 : 1.0;
-            bool ok = run_monitored(*sim, m, s10, [](int) { return 1.0f / 60; }, mon, &sub);
+            bool ok = run_monitored(
+                *sim, m, s10, [](int) { return 1.0f / 60; }, mon, &sub);
             const drape_stats ss = sim->stats();
             mon.max_strain = ss.max_strain;  // strain at the end, not the transient peak
             record("S10", std::to_string(r) + "^2", m, 0, 1.0 / 60, sub, ok, mon, s10);
@@ -1315,7 +1379,8 @@ void run_stress(const Options& o) {
             Monitor mon;
             uint32_t sub = 0;
             const double s10 = o.quick ? 0.5 : 1.0;
-            bool ok = run_monitored(*sim, m, s10, [](int) { return 1.0f / 60; }, mon, &sub);
+            bool ok = run_monitored(
+                *sim, m, s10, [](int) { return 1.0f / 60; }, mon, &sub);
             mon.max_strain = sim->stats().max_strain;
             record("S10", std::to_string(r) + "^2_no_tethers", m, 0, 1.0 / 60, sub, ok, mon, s10);
         }
@@ -1324,7 +1389,8 @@ void run_stress(const Options& o) {
     // S10 second half: solver passes per frame needed for max strain <= 1% after 1 s hanging, in
     // the default form (substeps x 1 iteration, tethers on), doubling from 16 up to 256 (quick 64).
     // Larger cloths never need fewer passes, so each size starts at the previous size's answer.
-    Csv it(o.out + "/s10_iterations.csv", "model,size,iterations,passes_for_1pct,max_strain_at_that,reached,max_passes");
+    Csv it(o.out + "/s10_iterations.csv",
+           "model,size,iterations,passes_for_1pct,max_strain_at_that,reached,max_passes");
     const std::vector<uint32_t> res2 = o.quick ? std::vector<uint32_t>{8} : std::vector<uint32_t>{16, 32, 64};
     const uint32_t max_passes = o.quick ? 64 : 256;
     g_progress.start("S10 passes", int(res2.size() * 2));
@@ -1361,7 +1427,8 @@ void run_stress(const Options& o) {
 // 4. The paper's Fig. 7: vibration at rest against stiffness
 
 void run_vibration(const Options& o) {
-    Csv csv(o.out + "/vibration.csv", "model,stiffness_scale,structural_stiffness,substeps,vibration_m,survived,criterion");
+    Csv csv(o.out + "/vibration.csv",
+            "model,stiffness_scale,structural_stiffness,substeps,vibration_m,survived,criterion");
     // 16^2 (was 20^2): MASS_SPRING's automatic substeps grow with resolution and stiffness, and
     // its stiff points were most of the run time. MASS_SPRING stops at 3e5 N/m (824 substeps at
     // 20^2; 1e6 N/m hits the 1000-substep cap, i.e. it no longer meets its own stability bound).
@@ -1369,8 +1436,10 @@ void run_vibration(const Options& o) {
     const double rest_s = o.quick ? 1.0 : 5.0, measure_s = o.quick ? 0.25 : 1.0;
     const std::vector<double> phys = o.quick ? std::vector<double>{0.1, 1, 10, 100}
                                              : std::vector<double>{0.05, 0.15, 0.5, 1.5, 5, 15, 50, 150, 500};
-    const std::vector<double> ms = o.quick ? std::vector<double>{0.1, 1, 10} : std::vector<double>{0.05, 0.5, 5, 50, 150};
-    const std::vector<double> pbd = o.quick ? std::vector<double>{0.1, 0.5, 1} : std::vector<double>{0.02, 0.05, 0.1, 0.2, 0.5, 1};
+    const std::vector<double> ms =
+        o.quick ? std::vector<double>{0.1, 1, 10} : std::vector<double>{0.05, 0.5, 5, 50, 150};
+    const std::vector<double> pbd =
+        o.quick ? std::vector<double>{0.1, 0.5, 1} : std::vector<double>{0.02, 0.05, 0.1, 0.2, 0.5, 1};
     g_progress.start("vibration", int(phys.size() + ms.size() + pbd.size()));
     for (uint32_t m : kModels)
         for (double scale : m == DRAPE_MODEL_PBD ? pbd : m == DRAPE_MODEL_MASS_SPRING ? ms : phys) {
@@ -1382,7 +1451,8 @@ void run_vibration(const Options& o) {
             p.air_drag = 2.0f;  // so the swing about the pin axis dies out within the rest time
             sim->set_params(p);
             Monitor mon;
-            bool ok = run_monitored(*sim, m, rest_s, [](int) { return 1.0f / 60; }, mon);
+            bool ok = run_monitored(
+                *sim, m, rest_s, [](int) { return 1.0f / 60; }, mon);
             const uint32_t mid = (n / 2) * n + n / 2;
             std::vector<float> prev = sim->positions();
             double sum = 0;
@@ -1390,12 +1460,14 @@ void run_vibration(const Options& o) {
             for (; ok && steps < int(measure_s * 60); ++steps) {
                 if (drape_cloth_step(sim->cloth, 1.0f / 60) != DRAPE_OK) ok = false;
                 std::vector<float> x = sim->positions();
-                double dx = x[3 * mid] - prev[3 * mid], dy = x[3 * mid + 1] - prev[3 * mid + 1], dz = x[3 * mid + 2] - prev[3 * mid + 2];
+                double dx = x[3 * mid] - prev[3 * mid], dy = x[3 * mid + 1] - prev[3 * mid + 1],
+                       dz = x[3 * mid + 2] - prev[3 * mid + 2];
                 sum += std::sqrt(dx * dx + dy * dy + dz * dz);
                 prev.swap(x);
             }
             csv.row("%s,%.4g,%.6g,%u,%.4g,%d,%s", model_name(m), scale, p.stiffness[0], sim->stats().substeps,
-                    ok ? sum / steps : NAN, int(ok), ok ? "" : (mon.criterion.empty() ? "step failed" : mon.criterion.c_str()));
+                    ok ? sum / steps : NAN, int(ok),
+                    ok ? "" : (mon.criterion.empty() ? "step failed" : mon.criterion.c_str()));
             g_progress.tick(std::string(model_name(m)) + fmt(" k=%g", p.stiffness[0]));
         }
     g_progress.finish();
@@ -1411,7 +1483,8 @@ void run_stages(const Options& o) {
     for (const char* s : kStageNames) header += std::string(",") + s + "_ms_median";
     Csv csv(o.out + "/stages.csv", header.c_str());
     const std::vector<uint32_t> sizes = o.quick ? std::vector<uint32_t>{16} : std::vector<uint32_t>{33, 65};
-    const uint32_t models[] = {DRAPE_MODEL_MASS_SPRING, DRAPE_MODEL_PBD, DRAPE_MODEL_XPBD, DRAPE_MODEL_IMPLICIT};
+    const uint32_t models[] = {DRAPE_MODEL_MASS_SPRING, DRAPE_MODEL_PBD, DRAPE_MODEL_XPBD,
+                               DRAPE_MODEL_IMPLICIT};
     g_progress.start("stages", int(sizes.size() * 4));
     for (uint32_t n : sizes)
         for (uint32_t m : models) {
@@ -1449,8 +1522,8 @@ void run_stages(const Options& o) {
                 step_ms.push_back(s.step_ms);
                 for (int k = 0; k < DRAPE_STAGE_COUNT; ++k) stage_ms[k].push_back(s.stage_ms[k]);
             }
-            std::string row = fmt("%.0f", n) + "," + std::to_string(sim->vertices) + "," + model_name(m) + "," +
-                              std::to_string(s.substeps) + "," + std::to_string(s.iterations) + "," +
+            std::string row = fmt("%.0f", n) + "," + std::to_string(sim->vertices) + "," + model_name(m) +
+                              "," + std::to_string(s.substeps) + "," + std::to_string(s.iterations) + "," +
                               std::to_string(step_ms.size()) + "," + fmt("%.4f", median(step_ms));
             for (const auto& v : stage_ms) row += "," + fmt("%.4f", median(v));
             csv.row("%s", row.c_str());
@@ -1510,9 +1583,12 @@ int main(int argc, char** argv) {
     Options o;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
-        if (a == "--quick") o.quick = true;
-        else if (a == "--out" && i + 1 < argc) o.out = argv[++i];
-        else if (a == "--threads" && i + 1 < argc) o.threads = uint32_t(std::atoi(argv[++i]));
+        if (a == "--quick")
+            o.quick = true;
+        else if (a == "--out" && i + 1 < argc)
+            o.out = argv[++i];
+        else if (a == "--threads" && i + 1 < argc)
+            o.threads = uint32_t(std::atoi(argv[++i]));
         else if (a == "--only" && i + 1 < argc) {
             std::stringstream ss(argv[++i]);
             for (std::string p; std::getline(ss, p, ',');) o.only.insert(p);
@@ -1541,6 +1617,7 @@ int main(int argc, char** argv) {
     if (o.wants("stages")) run_stages(o);
     const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
     write_meta(o, secs);
-    std::fprintf(stderr, "drape_bench: %s mode done in %.1f s; CSV in %s\n", o.quick ? "quick" : "full", secs, o.out.c_str());
+    std::fprintf(stderr, "drape_bench: %s mode done in %.1f s; CSV in %s\n", o.quick ? "quick" : "full", secs,
+                 o.out.c_str());
     return 0;
 }
