@@ -127,7 +127,8 @@ const char* model_name(uint32_t m) {
 const char* backend_name(uint32_t b) {
     return b == DRAPE_BACKEND_CPU ? "cpu" : b == DRAPE_BACKEND_CPU_THREADED ? "cpu_threaded" : "gles";
 }
-const uint32_t kModels[] = {DRAPE_MODEL_MASS_SPRING, DRAPE_MODEL_PBD, DRAPE_MODEL_XPBD};
+const uint32_t kModels[] = {DRAPE_MODEL_MASS_SPRING, DRAPE_MODEL_PBD, DRAPE_MODEL_XPBD, DRAPE_MODEL_IMPLICIT};
+constexpr int kModelCount = int(sizeof kModels / sizeof kModels[0]);
 
 void die_on(drape_status s, const char* what) {
     if (s == DRAPE_OK) return;
@@ -246,6 +247,23 @@ drape_params params_for(uint32_t model, double scale = 1.0) {
                                                    : float(2000.0 * scale * ratio[gi]);
     return p;
 }
+
+/// The parameters a new CPU cloth gets from the library (model, budget, tethers: what "the
+/// default" is on every plot and in REPORT.md), so a change of the library's default moves the
+/// marks by itself.
+drape_params library_default() {
+    GridSpec gs;
+    gs.cols = gs.rows = 4;
+    auto sim = make_grid(gs);
+    drape_params p{};
+    p.struct_size = sizeof p;
+    die_on(drape_cloth_get_params(sim->cloth, &p), "drape_cloth_get_params");
+    return p;
+}
+
+struct Config {
+    uint32_t model, substeps, iterations;  ///< 0 = automatic (the library's budget)
+};
 
 /// Times one step (wall clock around the C call).
 double timed_step(Sim& s, float dt, drape_status* st) {
@@ -427,20 +445,32 @@ void run_throughput(const Options& o) {
     const std::vector<uint32_t> sizes =
         o.quick ? std::vector<uint32_t>{16, 32} : std::vector<uint32_t>{32, 64, 128, 256};
     const auto backends = available_backends();
-    Csv csv(o.out + "/throughput.csv",
-            "size,vertices,model,backend,threads,substeps,iterations,frame_steps,steps,ms_median,ms_min,"
-            "vertex_iter_per_s,max_strain,rms_strain,ok");
-    g_progress.start("throughput", int(sizes.size() * 3 * backends.size()));
+    Csv csv(
+        o.out + "/throughput.csv",
+        "size,vertices,model,setting,backend,threads,substeps,iterations,frame_steps,steps,ms_median,ms_min,"
+        "vertex_iter_per_s,max_strain,rms_strain,ok");
+    // Every model at its automatic budget, and IMPLICIT at 1 x 1 (its cheapest).
+    std::vector<Config> configs;
+    for (uint32_t m : kModels) configs.push_back({m, 0, 0});
+    configs.push_back({DRAPE_MODEL_IMPLICIT, 1, 1});
+    g_progress.start("throughput", int(sizes.size() * configs.size() * backends.size()));
     for (uint32_t n : sizes)
-        for (uint32_t m : kModels)
+        for (const Config& c : configs)
             for (uint32_t b : backends) {
+                const uint32_t m = c.model;
                 GridSpec gs;
                 gs.cols = gs.rows = n;
                 gs.backend = b;
                 gs.threads = o.threads;
                 auto sim = make_grid(gs);
-                const drape_params p = params_for(m);
-                sim->set_params(p);
+                drape_params p = params_for(m);
+                p.substeps = c.substeps;
+                p.iterations = c.iterations;
+                if (drape_cloth_set_params(sim->cloth, &p) != DRAPE_OK) {  // a model this backend lacks
+                    g_progress.tick(std::to_string(n) + "^2 " + model_name(m) + " " + backend_name(b) + ": " +
+                                    drape_last_error());
+                    continue;
+                }
                 const uint32_t frame_steps = frame_steps_for(gs, p);
                 // MASS_SPRING runs hundreds to thousands of substeps per frame here: fewer frames
                 // (a median of 3 in a full run; one at 256^2, where a frame takes a minute or
@@ -450,10 +480,12 @@ void run_throughput(const Options& o) {
                 Timing t = o.quick ? time_cloth(*sim, 0.1, 1.0, slow ? 1 : 5, slow ? 0 : 2, frame_steps)
                                    : time_cloth(*sim, 0.6, 4.0, slow ? (n >= 256 ? 1 : 3) : 9,
                                                 slow ? (n >= 128 ? 0 : 1) : 3, frame_steps);
-                csv.row("%u,%u,%s,%s,%u,%u,%u,%u,%u,%.4f,%.4f,%.4g,%.5g,%.5g,%d", n, sim->vertices,
-                        model_name(m), backend_name(b), b == DRAPE_BACKEND_CPU ? 1u : o.threads, t.substeps,
-                        t.iterations, frame_steps, t.steps, t.ms_median, t.ms_min, t.vit_per_s, t.max_strain,
-                        t.rms_strain, int(t.ok));
+                const std::string setting =
+                    c.substeps == 0 ? "auto" : fmt("%g", c.substeps) + "x" + fmt("%g", c.iterations);
+                csv.row("%u,%u,%s,%s,%s,%u,%u,%u,%u,%u,%.4f,%.4f,%.4g,%.5g,%.5g,%d", n, sim->vertices,
+                        model_name(m), setting.c_str(), backend_name(b),
+                        b == DRAPE_BACKEND_CPU ? 1u : o.threads, t.substeps, t.iterations, frame_steps,
+                        t.steps, t.ms_median, t.ms_min, t.vit_per_s, t.max_strain, t.rms_strain, int(t.ok));
                 g_progress.tick(std::to_string(n) + "^2 " + model_name(m) + " " + backend_name(b) + " " +
                                 fmt("%.3g Mvit/s", t.vit_per_s * 1e-6));
             }
@@ -489,10 +521,6 @@ void run_threads(const Options& o) {
 
 // ---------------------------------------------------------------------------------------------
 // 2. Work-precision
-
-struct Config {
-    uint32_t model, substeps, iterations;  ///< substeps 0 = automatic
-};
 
 std::vector<Config> precision_configs(const Options& o, bool chain) {
     std::vector<Config> out;
@@ -551,8 +579,7 @@ struct RestConfig {
     uint32_t rest_size = 129;
 };
 std::vector<RestConfig> rest_configs(const Options& o) {
-    drape_params def{};
-    die_on(drape_params_default(&def), "drape_params_default");
+    const drape_params def = library_default();
     std::vector<RestConfig> out = {{{def.model, def.substeps, def.iterations}, def.max_stretch, 129},
                                    {{DRAPE_MODEL_XPBD, 0, 0}, 0, 129},
                                    {{DRAPE_MODEL_IMPLICIT, 0, 0}, 0, 129},
@@ -562,12 +589,13 @@ std::vector<RestConfig> rest_configs(const Options& o) {
     if (!o.quick) out.push_back({{DRAPE_MODEL_XPBD, 32, 1}, 0, 65});
     return out;
 }
-/// The sheet stops at 65^2: the Newton reference of the 129^2 sheet (50k unknowns, a full sparse
-/// LDL^T per iteration from a flat, singular start) had not converged after 15 minutes of a loaded
-/// machine.
+/// Both scenes stop at 129^2: the reference's sparse LDL^T (Eigen's simplicial one, the only
+/// one here) of a 257^2 grid (198k unknowns) took over 5 minutes per factorisation on the
+/// loaded machine, several per Newton solve. Each size's Newton solve starts from the one below
+/// (bench::add_coarse_displacement), so the 129^2 sheet takes a few iterations.
 std::vector<uint32_t> rest_sizes(const Options& o, bool curtain) {
     if (o.quick) return curtain ? std::vector<uint32_t>{17, 33} : std::vector<uint32_t>{17};
-    return curtain ? std::vector<uint32_t>{17, 33, 65, 129} : std::vector<uint32_t>{17, 33, 65};
+    return {17, 33, 65, 129};
 }
 int rest_runs(const Options& o) {
     int n = 0;
@@ -577,62 +605,86 @@ int rest_runs(const Options& o) {
     return n;
 }
 
+/// A rest scene and its Newton equilibrium: a curtain pinned along its top row (1 kg) or a
+/// horizontal sheet pinned along two opposite edges (0.5 kg), the default springs.
+struct RestScene {
+    GridSpec grid;
+    std::vector<float> w;         ///< inverse masses, 0 where pinned
+    std::vector<double> x, rest;  ///< equilibrium and rest positions
+    double largest = 0;           ///< largest displacement of the equilibrium from rest
+    size_t low_v = 0;             ///< lowest vertex of the equilibrium
+    double low_ref = 0, low_rest = 0, ref_strain = 0;
+};
+
+/// The scene at n^2; its Newton solve starts from `coarser`'s solution where it has one (cols > 0).
+RestScene rest_scene(const Options& o, bool curtain, uint32_t n, const RestScene& coarser) {
+    RestScene r;
+    GridSpec& gs = r.grid;
+    gs.cols = gs.rows = n;
+    gs.mass = curtain ? 1.0 : 0.5;
+    gs.vertical = curtain;
+    gs.pins = Pins::None;
+    gs.threads = 1;
+    // Reference: same springs, masses, pins.
+    const drape_params base = params_for(DRAPE_MODEL_IMPLICIT);
+    const double k[3] = {base.stiffness[0], base.stiffness[1], base.stiffness[2]};
+    const double spacing = 1.0 / (n - 1);
+    const auto springs = bench::grid_springs(n, n, spacing, spacing, k);
+    std::vector<double>& x = r.x;
+    x.assign(size_t(n) * n * 3, 0.0);
+    std::vector<double> mass(size_t(n) * n, gs.mass / (n * n));
+    r.w.assign(size_t(n) * n, float(n * n / gs.mass));
+    for (uint32_t row = 0; row < n; ++row)
+        for (uint32_t c = 0; c < n; ++c) {
+            const size_t v = size_t(row) * n + c;
+            x[3 * v] = c * spacing;
+            x[3 * v + (curtain ? 1 : 2)] = -double(row) * spacing;
+            if (curtain ? row == 0 : (c == 0 || c == n - 1)) mass[v] = 0, r.w[v] = 0;
+        }
+    r.rest = x;
+    if (coarser.grid.cols > 0 && !coarser.x.empty())
+        bench::add_coarse_displacement(x, n, coarser.x, coarser.rest, coarser.grid.cols);
+    const double g[3] = {0, -kG, 0};
+    const double residual = bench::solve_static(x, mass, springs, g);
+    r.ref_strain = bench::max_strain(x, springs, k[2]);
+    for (size_t v = 0; v < mass.size(); ++v) {
+        double d2 = 0;
+        for (int a = 0; a < 3; ++a)
+            d2 += (x[3 * v + a] - r.rest[3 * v + a]) * (x[3 * v + a] - r.rest[3 * v + a]);
+        r.largest = std::max(r.largest, std::sqrt(d2));
+        if (x[3 * v + 1] < r.low_ref) r.low_ref = x[3 * v + 1], r.low_v = v, r.low_rest = r.rest[3 * v + 1];
+    }
+    std::ofstream f(o.out + "/reference.csv", std::ios::app);
+    f << (curtain ? "curtain" : "sheet") << "_rest," << n << "," << residual << "," << r.ref_strain
+      << ",newton_static\n";
+    return r;
+}
+
 void run_rest(const Options& o) {
     Csv csv(o.out + "/rest.csv",
             "scene,size,model,setting,substeps,iterations,max_stretch,is_default,cpu_ms_median,wall_ms_"
             "median,rounds,"
-            "vertex_error,lowest_error,length_error,max_strain,ref_max_strain,ok");
+            "vertex_error,lowest_error,length_error,max_strain,ref_max_strain,ok,threads,threaded_wall_ms_"
+            "median");
     const int steps = o.quick ? 180 : 600, rounds = o.quick ? 3 : 5;
     g_progress.start("rest", rest_runs(o));
-    for (const char* scene : {"curtain", "sheet"}) {
-        const bool curtain = scene[0] == 'c';
+    for (const char* scene_name : {"curtain", "sheet"}) {
+        const bool curtain = scene_name[0] == 'c';
+        RestScene coarser;
         for (uint32_t n : rest_sizes(o, curtain)) {
-            GridSpec gs;
-            gs.cols = gs.rows = n;
-            gs.mass = curtain ? 1.0 : 0.5;
-            gs.vertical = curtain;
-            gs.pins = Pins::None;
-            gs.threads = 1;
-            // Reference: same springs, masses, pins.
-            const drape_params base = params_for(DRAPE_MODEL_IMPLICIT);
-            const double k[3] = {base.stiffness[0], base.stiffness[1], base.stiffness[2]};
-            const double spacing = 1.0 / (n - 1);
-            const auto springs = bench::grid_springs(n, n, spacing, spacing, k);
-            std::vector<double> x(size_t(n) * n * 3, 0.0), mass(size_t(n) * n, gs.mass / (n * n));
-            std::vector<float> w(size_t(n) * n, float(n * n / gs.mass));
-            for (uint32_t r = 0; r < n; ++r)
-                for (uint32_t c = 0; c < n; ++c) {
-                    const size_t v = size_t(r) * n + c;
-                    x[3 * v] = c * spacing;
-                    x[3 * v + (curtain ? 1 : 2)] = -double(r) * spacing;
-                    if (curtain ? r == 0 : (c == 0 || c == n - 1)) mass[v] = 0, w[v] = 0;
-                }
-            const std::vector<double> rest = x;
-            const double g[3] = {0, -kG, 0};
-            const double residual = bench::solve_static(x, mass, springs, g);
-            const double ref_strain = bench::max_strain(x, springs, k[2]);
-            double largest = 0, low_ref = 0, low_rest = 0;
-            size_t low_v = 0;
-            for (size_t v = 0; v < mass.size(); ++v) {
-                double d2 = 0;
-                for (int a = 0; a < 3; ++a)
-                    d2 += (x[3 * v + a] - rest[3 * v + a]) * (x[3 * v + a] - rest[3 * v + a]);
-                largest = std::max(largest, std::sqrt(d2));
-                if (x[3 * v + 1] < low_ref) low_ref = x[3 * v + 1], low_v = v, low_rest = rest[3 * v + 1];
-            }
-            {
-                std::ofstream f(o.out + "/reference.csv", std::ios::app);
-                f << scene << "_rest," << n << "," << residual << "," << ref_strain << ",newton_static\n";
-            }
+            const RestScene scene = rest_scene(o, curtain, n, coarser);
             // Every setting of this scene and size runs to rest, then they are timed in
             // interleaved rounds, so a burst of load from other processes falls on all of them.
             struct Run {
                 RestConfig rc;
                 bool is_default, at_rest;
                 std::unique_ptr<Sim> sim;
+                /// CPU_THREADED twin (o.threads), started from sim's state once that is at rest;
+                /// timed by the wall clock (its work is on several threads).
+                std::unique_ptr<Sim> threaded;
                 bool ok = true;
                 int reps = 1;  ///< steps per round: about 50 ms of work, at least one
-                std::vector<double> cpu_ms, wall_ms;
+                std::vector<double> cpu_ms, wall_ms, threaded_wall_ms;
             };
             std::vector<Run> runs;
             const std::vector<RestConfig> configs = rest_configs(o);
@@ -646,8 +698,8 @@ void run_rest(const Options& o) {
                 p.iterations = rc.c.iterations;
                 p.air_drag = 3;
                 p.max_stretch = rc.max_stretch;
-                r.sim = make_grid(gs);
-                r.sim->set_inverse_masses(w);
+                r.sim = make_grid(scene.grid);
+                r.sim->set_inverse_masses(scene.w);
                 r.sim->set_params(p);
                 r.at_rest = n <= rc.rest_size;
                 const int to_rest = r.at_rest ? steps : 1;
@@ -655,7 +707,16 @@ void run_rest(const Options& o) {
                 for (int step = 0; step < to_rest; ++step)
                     if (drape_cloth_step(r.sim->cloth, 1.0f / 60) != DRAPE_OK) r.ok = false;
                 r.reps = std::max(1, std::min(50, int(50.0 / ((thread_cpu_ms() - t0) / to_rest))));
-                g_progress.tick(std::string(scene) + " " + std::to_string(n) + "^2 " +
+                if (o.threads > 1) {
+                    GridSpec tg = scene.grid;
+                    tg.backend = DRAPE_BACKEND_CPU_THREADED;
+                    tg.threads = o.threads;
+                    r.threaded = make_grid(tg);
+                    r.threaded->set_inverse_masses(scene.w);
+                    r.threaded->set_params(p);
+                    r.threaded->set_positions(r.sim->positions());
+                }
+                g_progress.tick(std::string(scene_name) + " " + std::to_string(n) + "^2 " +
                                 model_name(rc.c.model) + (r.at_rest ? " to rest" : " (timing only)"));
                 runs.push_back(std::move(r));
             }
@@ -668,14 +729,22 @@ void run_rest(const Options& o) {
                     r.cpu_ms.push_back((thread_cpu_ms() - c0) / r.reps);
                     r.wall_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - w0).count() /
                                         r.reps);
+                    if (!r.threaded) continue;
+                    const auto t0 = Clock::now();
+                    for (int k = 0; k < r.reps; ++k)
+                        if (drape_cloth_step(r.threaded->cloth, 1.0f / 60) != DRAPE_OK) r.ok = false;
+                    r.threaded_wall_ms.push_back(
+                        std::chrono::duration<double, std::milli>(Clock::now() - t0).count() / r.reps);
                 }
             for (const Run& r : runs) {
                 const std::vector<float> xs = r.sim->positions();
-                const double e_vertex = r.at_rest ? max_distance(xs, x) / largest : NAN;
+                const double low = xs[3 * scene.low_v + 1];
+                const double e_vertex = r.at_rest ? max_distance(xs, scene.x) / scene.largest : NAN;
                 const double e_low =
-                    r.at_rest ? std::fabs(xs[3 * low_v + 1] - low_ref) / std::fabs(low_ref - low_rest) : NAN;
+                    r.at_rest ? std::fabs(low - scene.low_ref) / std::fabs(scene.low_ref - scene.low_rest)
+                              : NAN;
                 const double e_length =
-                    r.at_rest ? std::fabs(xs[3 * low_v + 1] - low_ref) / std::fabs(low_ref) : NAN;
+                    r.at_rest ? std::fabs(low - scene.low_ref) / std::fabs(scene.low_ref) : NAN;
                 const drape_stats ss = r.sim->stats();
                 const Config& c = r.rc.c;
                 const std::string setting =
@@ -683,11 +752,13 @@ void run_rest(const Options& o) {
                     : c.model == DRAPE_MODEL_MASS_SPRING
                         ? std::to_string(c.substeps)
                         : std::to_string(c.substeps) + "x" + std::to_string(c.iterations);
-                csv.row("%s,%u,%s,%s,%u,%u,%g,%d,%.4f,%.4f,%d,%.5g,%.5g,%.5g,%.5g,%.5g,%d", scene, n,
-                        model_name(c.model), setting.c_str(), ss.substeps, ss.iterations,
+                csv.row("%s,%u,%s,%s,%u,%u,%g,%d,%.4f,%.4f,%d,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%u,%.4f",
+                        scene_name, n, model_name(c.model), setting.c_str(), ss.substeps, ss.iterations,
                         double(r.rc.max_stretch), int(r.is_default), median(r.cpu_ms), median(r.wall_ms),
-                        rounds, e_vertex, e_low, e_length, ss.max_strain, ref_strain, int(r.ok));
+                        rounds, e_vertex, e_low, e_length, ss.max_strain, scene.ref_strain, int(r.ok),
+                        r.threaded ? o.threads : 1u, r.threaded ? median(r.threaded_wall_ms) : NAN);
             }
+            coarser = scene;
         }
     }
     g_progress.finish();
@@ -863,8 +934,7 @@ void run_precision_tethers(const Options& o, Csv& csv) {
     const std::vector<uint32_t> sizes = o.quick ? std::vector<uint32_t>{16} : std::vector<uint32_t>{64, 128};
     const double seconds = o.quick ? 1.0 : 3.0;
     const float dt = 1.0f / 60.0f;
-    drape_params def{};
-    die_on(drape_params_default(&def), "drape_params_default");
+    const drape_params def = library_default();
     const Config cfgs[] = {{DRAPE_MODEL_XPBD, 0, def.iterations},
                            {DRAPE_MODEL_PBD, 0, def.iterations},
                            {DRAPE_MODEL_XPBD, 4, 4}};
@@ -1088,22 +1158,25 @@ void run_stress(const Options& o) {
     }
     const std::vector<double> pbd_fractions = {0.001, 0.01, 0.1, 0.5, 1.0};
     // S1 configurations: MASS_SPRING with one substep (the explicit limit), MASS_SPRING with
-    // automatic substeps (default), PBD, XPBD (defaults). Equal stiffness in all three groups
-    // and no damping, so the analytic Verlet limit applies.
+    // automatic substeps, PBD, XPBD, IMPLICIT at their automatic budgets, IMPLICIT at 1 x 1.
+    // Equal stiffness in all three groups and no damping, so the analytic Verlet limit applies.
     struct S1Cfg {
         const char* label;
-        uint32_t model, substeps;
+        uint32_t model, substeps, iterations;
     };
-    const S1Cfg s1cfg[] = {{"mass_spring_1substep", DRAPE_MODEL_MASS_SPRING, 1},
-                           {"mass_spring", DRAPE_MODEL_MASS_SPRING, 0},
-                           {"pbd", DRAPE_MODEL_PBD, 0},
-                           {"xpbd", DRAPE_MODEL_XPBD, 0}};
+    const S1Cfg s1cfg[] = {{"mass_spring_1substep", DRAPE_MODEL_MASS_SPRING, 1, 0},
+                           {"mass_spring", DRAPE_MODEL_MASS_SPRING, 0, 0},
+                           {"pbd", DRAPE_MODEL_PBD, 0, 0},
+                           {"xpbd", DRAPE_MODEL_XPBD, 0, 0},
+                           {"implicit", DRAPE_MODEL_IMPLICIT, 0, 0},
+                           {"implicit_1x1", DRAPE_MODEL_IMPLICIT, 1, 1}};
     const std::vector<uint32_t> res =
         o.quick ? std::vector<uint32_t>{8, 16} : std::vector<uint32_t>{16, 32, 64, 128, 256};
     int total = 0;
     for (const auto& c : s1cfg)
         total += int((c.model == DRAPE_MODEL_PBD ? pbd_fractions.size() : ks.size()) * dts.size());
-    total += 3 * 12 + 3 * 10 + 3 + 3 * 3 + 3 * 2 + 3 * int(res.size()) + 2 * int(res.size()) + 3 * 3;
+    total += kModelCount * 12 + kModelCount * 10 + kModelCount + kModelCount * 3 + kModelCount * 2 +
+             kModelCount * int(res.size()) + 2 * int(res.size()) + kModelCount * 3;
     g_progress.start("stress", total);
     auto record = [&](const std::string& test, const std::string& label, uint32_t model, double k, double dt,
                       uint32_t substeps, bool ok, const Monitor& mon, double seconds) {
@@ -1132,6 +1205,7 @@ void run_stress(const Options& o) {
                 for (float& s : p.stiffness) s = float(k);
                 p.damping = 0;
                 p.substeps = c.substeps;
+                p.iterations = c.iterations;
                 sim->set_params(p);
                 Monitor mon;
                 uint32_t sub = 0;
@@ -1294,8 +1368,7 @@ void run_stress(const Options& o) {
         record("S7", "1substep_1iter_stiff", m, p.stiffness[0], 1.0 / 60, sub, ok, mon, secs);
         // Same stiff material with the default budget, for comparison.
         auto sim2 = make_grid(base_grid(false));
-        drape_params def{};
-        die_on(drape_params_default(&def), "drape_params_default");
+        const drape_params def = library_default();
         p.substeps = def.substeps;
         p.iterations = def.iterations;
         sim2->set_params(p);
@@ -1558,9 +1631,10 @@ void write_meta(const Options& o, double seconds) {
     f << "stress_grid," << (o.quick ? 8 : 16) << "\n";
     f << "vibration_grid," << (o.quick ? 8 : 16) << "\n";
     f << "cloth_mass," << GridSpec{}.mass << "\n";
-    // The library's defaults (model, budget) as one step of a small cloth reports them.
-    drape_params def{};
-    die_on(drape_params_default(&def), "drape_params_default");
+    // The library's defaults (model, budget) as one step of a small cloth reports them;
+    // default_auto_budget: the default asks for the automatic budget (substeps 0).
+    const drape_params def = library_default();
+    f << "default_auto_budget," << int(def.substeps == 0) << "\n";
     GridSpec gs;
     gs.cols = gs.rows = 4;
     auto sim = make_grid(gs);

@@ -56,8 +56,20 @@ def machine_note(meta):
 
 
 def default_cfg(meta):
-    """(model, substeps, iterations) of the library's defaults as drape_bench recorded them."""
-    return meta.get("default_model", "xpbd"), meta.get("default_substeps", "16"), meta.get("default_iterations", "1")
+    """(model, substeps, iterations) of the library's defaults as drape_bench recorded them (what a
+    new cloth gets from the library, its budget as one step of a small cloth resolved it)."""
+    return meta["default_model"], meta["default_substeps"], meta["default_iterations"]
+
+
+def default_rows(rows, meta):
+    """The rows of precision.csv run at the library's default: the model's automatic-budget row when
+    the default asks for the automatic budget, else the rows at the default's resolved budget."""
+    dm, ds, di = default_cfg(meta)
+    mine = [r for r in rows if r["model"] == dm]
+    auto = [r for r in mine if r["auto_substeps"] == "1"]
+    if meta.get("default_auto_budget") == "1" and auto:
+        return auto
+    return [r for r in mine if r["substeps"] == ds and r["iterations"] == di]
 
 
 def log_axes(ax, x=True, y=True):
@@ -109,6 +121,11 @@ def log_axes(ax, x=True, y=True):
     return ok
 
 
+def variant(r):
+    """A throughput row's model, with its budget where it is not the automatic one (e.g. implicit 1x1)."""
+    return r["model"] if r["setting"] == "auto" else f"{r['model']} {r['setting']}"
+
+
 def fig6(out, rows, meta, lines):
     if not rows:
         return
@@ -116,13 +133,15 @@ def fig6(out, rows, meta, lines):
     groups = defaultdict(list)
     for r in rows:
         if r["ok"] == "1":  # a rolled-back or capped step times no real frame
-            groups[(r["model"], r["backend"])].append(r)
+            groups[(variant(r), r["backend"])].append(r)
     for (m, be), rs in sorted(groups.items()):
         rs.sort(key=lambda r: num(r["vertices"]))
         v = [num(r["vertices"]) for r in rs]
         label = f"{m} {be}" + (" (Mesa llvmpipe, software)" if be == "gles" else "")
-        a.plot(v, [num(r["ms_median"]) for r in rs], STYLES.get(be, "-"), marker="o", color=COLOURS[m], label=label)
-        b.plot(v, [num(r["vertex_iter_per_s"]) for r in rs], STYLES.get(be, "-"), marker="o", color=COLOURS[m], label=label)
+        marker = "o" if m == rs[0]["model"] else "s"
+        a.plot(v, [num(r["ms_median"]) for r in rs], STYLES.get(be, "-"), marker=marker, color=COLOURS[rs[0]["model"]], label=label)
+        b.plot(v, [num(r["vertex_iter_per_s"]) for r in rs], STYLES.get(be, "-"), marker=marker, color=COLOURS[rs[0]["model"]],
+               label=label)
     b.axhline(REF_VIT, color="grey", lw=1)
     b.text(0.02, REF_VIT * 1.08, "reference engine 15 M/s per core", color="grey", fontsize=8,
            transform=b.get_yaxis_transform())
@@ -147,8 +166,8 @@ def fig6(out, rows, meta, lines):
     # Report tables.
     sizes = sorted({int(r["size"]) for r in rows})
     backends = [b for b in ("cpu", "cpu_threaded", "gles") if any(r["backend"] == b for r in rows)]
-    idx = {(r["model"], r["backend"], int(r["size"])): r for r in rows}
-    models = [m for m in MODELS if any(r["model"] == m for r in rows)]
+    idx = {(variant(r), r["backend"], int(r["size"])): r for r in rows}
+    models = [v for m in MODELS for v in dict.fromkeys(variant(r) for r in rows if r["model"] == m)]
     lines.append("## Throughput (seed, paper Fig. 6)\n")
     lines.append("Hanging cloth (1 m, 0.2 kg, two top corners pinned), library defaults per model (automatic "
                  f"substeps and iterations, as throughput.csv records them; tethers max_stretch "
@@ -324,7 +343,7 @@ def precision(out, rows, refs, meta, lines):
                         last = cr[-1]
                         ax.annotate(f"{last['substeps']}x{last['iterations']}", (num(last["ms_median"]), num(last[key])),
                                     fontsize=6, color=COLOURS[m])
-            d = [r for r in rs if r["model"] == dm and r["substeps"] == ds and r["iterations"] == di]
+            d = default_rows(rs, meta)
             if d and fin(num(d[0][key])) and num(d[0][key]) > 0:
                 ax.scatter([num(d[0]["ms_median"])], [num(d[0][key])], marker="*", s=160, facecolor="none",
                            edgecolor="black", label=f"default {dm} {ds}x{di}", zorder=5)
