@@ -3,7 +3,7 @@
 // files into --out; tests/bench/plot.py turns them into PNGs and REPORT.md.
 //
 //   drape_bench [--quick] [--out DIR] [--only a,b,...] [--threads N]
-//   parts: throughput, threads, precision, rest, stress, vibration, stages
+//   parts: throughput, threads, precision, rest, stiff, stress, vibration, stages
 //
 // Timings are wall-clock medians over repeated steps of one run on a shared machine; they are
 // numbers to compare within one run, never assertions.
@@ -767,10 +767,12 @@ void run_rest(const Options& o) {
 /// Static equilibrium of the cloth hanging from its two top corners (n x n, 1 m, 0.2 kg, the
 /// default springs) by Newton in double precision (reference.h). Appends it to reference.csv.
 struct TwoCornerRef {
-    std::vector<double> x;
+    uint32_t n = 0;
+    std::vector<double> x, rest;  ///< equilibrium and rest positions
     double residual = NAN, max_strain = NAN;
 };
-TwoCornerRef two_corner_reference(const Options& o, uint32_t n) {
+/// `coarser`: a solution at a smaller size whose displacement starts the Newton solve (none if empty).
+TwoCornerRef two_corner_reference(const Options& o, uint32_t n, const TwoCornerRef& coarser = {}) {
     TwoCornerRef r;
     const GridSpec gs;
     const drape_params base = params_for(DRAPE_MODEL_XPBD);
@@ -785,6 +787,9 @@ TwoCornerRef two_corner_reference(const Options& o, uint32_t n) {
             r.x[3 * (row * n + c) + 1] = -double(row) * spacing;
         }
     mass[0] = mass[n - 1] = 0;
+    r.rest = r.x;
+    if (!coarser.x.empty()) bench::add_coarse_displacement(r.x, n, coarser.x, coarser.rest, coarser.n);
+    r.n = n;
     const double g[3] = {0, -kG, 0};
     r.residual = bench::solve_static(r.x, mass, springs, g);
     r.max_strain = bench::max_strain(r.x, springs, k[2]);
@@ -1080,6 +1085,66 @@ void run_precision(const Options& o) {
     run_precision_chain(o, csv);
     run_precision_tethers(o, csv);
     run_precision_sphere(o, csv);
+    g_progress.finish();
+}
+
+/// Stiff under load: the cloth hanging from its two top corners (precision's two_corners scene)
+/// at 128^2 and 256^2 (quick: 16^2, 32^2), 3 s at 60 Hz from flat with the default damping; its
+/// max strain (structural and shear springs, drape_stats) at the end against the exact
+/// equilibrium's (Newton, each size started from the one below: 32^2, 64^2, 128^2, 256^2). The
+/// library's default as it is, its model without tethers, and IMPLICIT and XPBD at their
+/// automatic budgets without tethers.
+void run_stiff(const Options& o) {
+    Csv csv(o.out + "/stiff_under_load.csv",
+            "size,model,setting,max_stretch,is_default,seconds,max_strain,ref_max_strain,strain_over_ref,ms_median,ok");
+    const std::vector<uint32_t> sizes = o.quick ? std::vector<uint32_t>{16, 32} : std::vector<uint32_t>{128, 256};
+    const drape_params def = library_default();
+    struct Setting {
+        Config c;
+        float max_stretch;
+    };
+    std::vector<Setting> settings = {{{def.model, def.substeps, def.iterations}, def.max_stretch}};
+    for (Setting st : {Setting{{def.model, def.substeps, def.iterations}, 0}, Setting{{DRAPE_MODEL_IMPLICIT, 0, 0}, 0},
+                       Setting{{DRAPE_MODEL_XPBD, 0, 0}, 0}}) {
+        const bool seen = std::any_of(settings.begin(), settings.end(), [&](const Setting& t) {
+            return t.c.model == st.c.model && t.c.substeps == st.c.substeps && t.c.iterations == st.c.iterations &&
+                   t.max_stretch == st.max_stretch;
+        });
+        if (!seen) settings.push_back(st);
+    }
+    const double seconds = 3.0;
+    g_progress.start("stiff", int(sizes.size() * settings.size()));
+    TwoCornerRef ref;
+    for (uint32_t n = sizes.front() / 4; n <= sizes.back(); n *= 2) {
+        ref = two_corner_reference(o, n, ref);
+        if (n < sizes.front()) continue;
+        GridSpec gs;
+        gs.cols = gs.rows = n;
+        gs.threads = 1;
+        for (const Setting& st : settings) {
+            drape_params p = params_for(st.c.model);
+            p.substeps = st.c.substeps;
+            p.iterations = st.c.iterations;
+            p.max_stretch = st.max_stretch;
+            auto sim = make_grid(gs);
+            sim->set_params(p);
+            std::vector<double> ms;
+            bool ok = true;
+            drape_status status;
+            for (int step = 0; step < int(seconds * 60 + 0.5); ++step) {
+                ms.push_back(timed_step(*sim, 1.0f / 60, &status));
+                if (status != DRAPE_OK) ok = false;
+            }
+            const drape_stats ss = sim->stats();
+            const bool is_default = &st == &settings[0];
+            const std::string setting = st.c.substeps == 0 ? "auto" : fmt("%g", st.c.substeps) + "x" + fmt("%g", st.c.iterations);
+            csv.row("%u,%s,%s,%g,%d,%g,%.5g,%.5g,%.4g,%.4f,%d", n, model_name(st.c.model), setting.c_str(),
+                    double(st.max_stretch), int(is_default), seconds, ss.max_strain, ref.max_strain,
+                    ss.max_strain / ref.max_strain, median(ms), int(ok));
+            g_progress.tick(std::to_string(n) + "^2 " + model_name(st.c.model) + " " + setting +
+                            fmt(" strain x%.3g", ss.max_strain / ref.max_strain));
+        }
+    }
     g_progress.finish();
 }
 
@@ -1669,7 +1734,7 @@ int main(int argc, char** argv) {
         } else {
             std::fprintf(stderr,
                          "usage: drape_bench [--quick] [--out DIR] [--threads N] [--only "
-                         "throughput,threads,precision,rest,stress,vibration,stages]\n");
+                         "throughput,threads,precision,rest,stiff,stress,vibration,stages]\n");
             return a == "--help" || a == "-h" ? 0 : 2;
         }
     }
@@ -1686,6 +1751,7 @@ int main(int argc, char** argv) {
     if (o.wants("threads")) run_threads(o);
     if (o.wants("precision")) run_precision(o);
     if (o.wants("rest")) run_rest(o);
+    if (o.wants("stiff")) run_stiff(o);
     if (o.wants("stress")) run_stress(o);
     if (o.wants("vibration")) run_vibration(o);
     if (o.wants("stages")) run_stages(o);

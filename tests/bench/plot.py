@@ -503,6 +503,60 @@ def jolt_points(ax):
     ax.scatter([], [], marker="x", color="black", label=JOLT)
 
 
+def stiff_under_load(out, rows, meta, lines):
+    """Max strain after 3 s hanging from two corners against the exact equilibrium's:
+    stiff_under_load.png and a REPORT section (the target: at most 2x at the default budget)."""
+    if not rows:
+        return
+    sizes = sorted({int(r["size"]) for r in rows})
+    settings = list(dict.fromkeys((r["model"], r["setting"], r["max_stretch"], r["is_default"]) for r in rows))
+
+    def label(st):
+        model, setting, stretch, is_default = st
+        return (f"{MODEL_NAMES[model]} {setting}" + (f", tethers {stretch}" if num(stretch) > 0 else "")
+                + (" (default)" if is_default == "1" else ""))
+
+    fig, ax = plt.subplots(figsize=(7.5, 4.6))
+    width = 0.8 / len(settings)
+    for k, st in enumerate(settings):
+        cells = [next((r for r in rows if int(r["size"]) == n and (r["model"], r["setting"], r["max_stretch"],
+                                                                   r["is_default"]) == st), None) for n in sizes]
+        xs = [i + (k - (len(settings) - 1) / 2) * width for i, c in enumerate(cells) if c]
+        ys = [num(c["strain_over_ref"]) for c in cells if c]
+        ax.bar(xs, ys, width, color=COLOURS[st[0]], alpha=1.0 if st[3] == "1" else 0.55,
+               edgecolor="black" if st[3] == "1" else "none", label=label(st))
+    ax.axhline(2, color="black", ls=":", lw=1)
+    ax.text(0.01, 2.1, "target: 2 x the equilibrium's", transform=ax.get_yaxis_transform(), fontsize=7)
+    ax.set_yscale("log")
+    ax.set_xticks(range(len(sizes)))
+    ax.set_xticklabels([f"{n}^2" for n in sizes])
+    ax.set_ylabel("max strain after 3 s / equilibrium's")
+    ax.set_title("Stiff under load: cloth hanging from two corners (the default has a black edge)", fontsize=9)
+    ax.legend(fontsize=7)
+    fig.text(0.01, 0.01, machine_note(meta), fontsize=6)
+    fig.tight_layout(rect=(0, 0.04, 1, 1))
+    fig.savefig(os.path.join(out, "stiff_under_load.png"), dpi=110)
+    plt.close(fig)
+
+    lines.append("## Stiff under load\n")
+    lines.append("Cloth hanging from its two top corners (1 m, 0.2 kg, springs 2000/1000/200 N/m), 3 s at 60 Hz from "
+                 "flat with the default damping, one thread; max strain of the structural and shear springs at the end "
+                 "against the exact (Newton) equilibrium's. Target: at most 2x at the default budget, without tethers. "
+                 "CSV: stiff_under_load.csv; plot: stiff_under_load.png.\n")
+    lines.append("| setting | " + " | ".join(f"{n}^2 max strain (x equilibrium) / ms" for n in sizes) + " |")
+    lines.append("|---|" + "---|" * len(sizes))
+    for st in settings:
+        cells = []
+        for n in sizes:
+            c = next((r for r in rows if int(r["size"]) == n and (r["model"], r["setting"], r["max_stretch"],
+                                                                  r["is_default"]) == st), None)
+            cells.append("" if not c else
+                         f"{num(c['max_strain']):.3g} (x{num(c['strain_over_ref']):.2f}) / {num(c['ms_median']):.1f}"
+                         + ("" if c["ok"] == "1" else " unstable"))
+        lines.append(f"| {label(st)} | " + " | ".join(cells) + " |")
+    lines.append("")
+
+
 def curtain_vs_jolt(out, rows, meta, lines):
     """The curtain comparison re-measured, beside Jolt 5.5's figures: curtain_vs_jolt.csv,
     equal_error.csv, curtain_vs_jolt.png and a REPORT section."""
@@ -786,13 +840,14 @@ def main():
              f"Run time {num(meta.get('seconds', 'nan')):.0f} s. All numbers come from this one run; timings are "
              "medians of repeated steps on a machine shared with other engineers' builds, so they move between runs "
              "(compare ratios within a run). Plots: fig6_step_time.png, threads.png, precision_*.png, curtain_vs_jolt.png, "
-             "stability_map.png, fig7_vibration.png.\n"]
+             "stiff_under_load.png, stability_map.png, fig7_vibration.png.\n"]
     sections = [
         lambda: fig6(out, read(out, "throughput.csv"), meta, lines),
         lambda: threads(out, read(out, "threads.csv"), meta, lines),
         lambda: precision(out, read(out, "precision.csv"), read(out, "reference.csv"), meta, lines),
         lambda: rest(out, read(out, "rest.csv"), meta, lines),
         lambda: curtain_vs_jolt(out, read(out, "rest.csv"), meta, lines),
+        lambda: stiff_under_load(out, read(out, "stiff_under_load.csv"), meta, lines),
         lambda: stress(out, read(out, "stress.csv"), read(out, "s10_iterations.csv"), read(out, "s8_colliders.csv"),
                        meta, lines),
         lambda: vibration(out, read(out, "vibration.csv"), meta, lines),
