@@ -1204,7 +1204,7 @@ Result GlesCloth::gpu_step(float dt) {
     drag_views_.clear();
     drag_touches_.clear();
     advance_interaction();
-    issue_still(*p_still, dt);
+    if (p_still) issue_still(*p_still, dt);  // compiled only when the cloth may sleep
     // Re-centre as CpuCloth::step does, without reading back: kinematic particles end the step on
     // their targets, which the CPU holds; a cloth without any decides from its last read-back copy
     // (shifted along with the state, so it stays consistent).
