@@ -340,7 +340,7 @@ private:
         const int edits = in_.ConsumeIntegralInRange<int>(1, 4);
         for (int e = 0; e < edits; ++e) {
             switch (in_.ConsumeIntegralInRange<int>(0, 9)) {
-                case 0: p.model = in_.ConsumeIntegralInRange<uint32_t>(0, 3); break;
+                case 0: p.model = in_.ConsumeIntegralInRange<uint32_t>(0, 4); break;
                 case 1: p.stiffness[in_.ConsumeIntegralInRange<int>(0, 2)] = p.model == DRAPE_MODEL_PBD
                                                                                  ? maybe_bad(0, 1)
                                                                                  : maybe_bad(0, 1e5f);
@@ -365,7 +365,13 @@ private:
         drape_status s = checked(drape_cloth_set_params(c.handle, rarely() ? nullptr : &p));
         if (s != DRAPE_OK) expect_unchanged(c, before);
         else {
-            const drape_params now = read_params(c);  // what was set is what is read back
+            // What was set is what is read back, AUTO as the model it resolved to on this backend.
+            const drape_params now = read_params(c);
+            if (p.model == DRAPE_MODEL_AUTO) {
+                drape_cloth_info info{sizeof info};
+                CHECK(checked(drape_cloth_get_info(c.handle, &info)) == DRAPE_OK);
+                p.model = info.backend == DRAPE_BACKEND_GLES ? DRAPE_MODEL_XPBD : DRAPE_MODEL_IMPLICIT;
+            }
             CHECK(std::memcmp(&now, &p, sizeof p) == 0);
         }
     }
