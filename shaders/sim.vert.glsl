@@ -17,6 +17,14 @@
 //   DRAPE_COMMIT             last iteration: two outputs (separate buffers), v_x positions
 //                            start + displacement and v_d displacements (lambdas are not kept:
 //                            the next prediction resets them)
+//   DRAPE_IMPLICIT           predict for IMPLICIT (kernels::implicit_predict): writes the first
+//                            iterate v_d (inertia alone), v_prev (the same) and the target v_target
+//   DRAPE_PASS_IMPLICIT      one iteration of IMPLICIT's solve on GLES: a block-Jacobi step on the
+//                            implicit Euler objective (kernels::implicit_residual's Phi; per
+//                            particle a 3x3 block like its Hessian's, see jacobi_step),
+//                            accelerated by Chebyshev (Wang 2015); iterate records (v_d, v_prev,
+//                            v_target). With DRAPE_COMMIT: two outputs, v_x = start +
+//                            displacement and v_d
 //   DRAPE_PASS_TETHER        kernels::tether after the solve of a substep (only compiled and run
 //                            when the cloth has tethers: max_stretch > 0 and kinematic particles).
 //                            Two outputs like MASS_SPRING: v_x, v_d. Own x and d as attributes,
@@ -52,7 +60,7 @@
 // floatBitsToUint(rest), group, 0); the particle table texel i = (neighbour count, active springs,
 // 0, 0). All textures are u_tex_width texels wide (row-major).
 #if !defined(DRAPE_PASS_MASS_SPRING) && !defined(DRAPE_PASS_PREDICT) && !defined(DRAPE_PASS_CONSTRAINT) && \
-    !defined(DRAPE_PASS_TETHER) && !defined(DRAPE_PASS_INTERACT) && !defined(DRAPE_PASS_MOVE) && \
+    !defined(DRAPE_PASS_IMPLICIT) && !defined(DRAPE_PASS_TETHER) && !defined(DRAPE_PASS_INTERACT) && !defined(DRAPE_PASS_MOVE) && \
     !defined(DRAPE_PASS_STILL)
 #define DRAPE_PASS_MASS_SPRING 1
 #endif
@@ -114,6 +122,13 @@ uniform float u_move_keep_velocity;
 #ifdef DRAPE_PASS_STILL
 uniform float u_still_limit2;        // (sleep threshold * h_prev)^2, m^2
 #endif
+#ifdef DRAPE_PASS_IMPLICIT
+// x: Chebyshev weight of this iteration, y: under-relaxation gamma of the Jacobi step
+// (gles_cloth.cpp implicit_chebyshev).
+uniform vec2 u_chebyshev;
+in vec4 a_prev;                     // own previous iterate (displacement)
+in vec4 a_target;                   // own target y (kernels::implicit_predict)
+#endif
 
 in vec4 a_x;                        // own record: position x (MS, PREDICT) / displacement iterate
 in vec4 a_aux;                      // own: displacement d (MS, PREDICT, TETHER) or substep start x (CONSTRAINT)
@@ -139,6 +154,10 @@ in vec3 a_kstart;                   // position at the start of the step
 in vec3 a_ktarget;                  // pin target at the end of the step
 #endif
 
+#if defined(DRAPE_IMPLICIT) || (defined(DRAPE_PASS_IMPLICIT) && !defined(DRAPE_COMMIT))
+out vec4 v_prev;                    // the iterate this pass started from
+out vec4 v_target;                  // target y, passed on
+#endif
 #if defined(DRAPE_PASS_MASS_SPRING) || defined(DRAPE_COMMIT) || defined(DRAPE_PASS_TETHER) || \
     defined(DRAPE_PASS_INTERACT) || defined(DRAPE_PASS_MOVE)
 out vec4 v_x;                       // new position record
@@ -202,7 +221,7 @@ in vec4 a_lambda7;
 #endif
 
 ivec2 texel(int t) { return ivec2(t % u_tex_width, t / u_tex_width); }
-#ifdef DRAPE_PASS_CONSTRAINT
+#if defined(DRAPE_PASS_CONSTRAINT) || defined(DRAPE_PASS_IMPLICIT)
 vec4 fetch_x(int j) { return texelFetch(u_x, texel(j * DRAPE_RECORD), 0); }  // iterate record
 #else
 vec4 fetch_x(int j) { return texelFetch(u_x, texel(j), 0); }                 // state record
@@ -286,6 +305,39 @@ vec4 solve_slots4(Own o, int q, vec4 lambda, inout vec3 dx) {
     return lambda;
 }
 #endif
+#endif
+
+#ifdef DRAPE_PASS_IMPLICIT
+// The block-Jacobi step of particle i (free) on Phi(d) = sum_i |d_i - y_i|^2 / (2 w_i h^2) +
+// sum_springs k/2 (|x_i - x_j| - L)^2 + dashpots (kernels::implicit_residual): the force residual
+// r_i = -grad_i Phi and a 3x3 block D_i like Phi's Hessian block H_ii, but with each spring's
+// transverse stiffness k (1 - L/l) taken by its magnitude: D_i is positive definite, and since a
+// spring's term in H is at most twice its share of the two blocks, H <= 2 D: the damped iteration
+// converges for the linearised problem. (Dropping a compressed spring's negative transverse term
+// instead, as kernels::implicit_hessian_product does, let a stiff cloth hanging from two corners
+// oscillate at 150 % strain.) Returns D_i^-1 r_i. Neighbours' iterates from u_x, their substep
+// start from u_aux.
+vec3 jacobi_step(int row, int count, vec3 di, vec3 si, vec3 yi, float wi) {
+    float kd_h = u_damping / u_h;
+    float mass_h2 = 1.0 / (wi * u_h * u_h);
+    vec3 r = (yi - di) * mass_h2;
+    mat3 block = mat3(mass_h2);
+    for (int s = 0; s < count; ++s) {
+        uvec4 nb = fetch_nbr(row + s);
+        if (!active_group(nb.z)) continue;
+        int j = int(nb.x);
+        vec3 dij = di - fetch_x(j).xyz;
+        float len;
+        vec3 n = direction((si - fetch_aux(j).xyz) + dij, len);
+        float k = u_stiffness[nb.z];
+        float rest = uintBitsToFloat(nb.y);
+        r -= (k * (len - rest) + kd_h * dot(n, dij)) * n;
+        float across = len > 0.0 ? k * abs(1.0 - rest / len) : 0.0;
+        mat3 nn = outerProduct(n, n);
+        block += (k + kd_h) * nn + across * (mat3(1.0) - nn);
+    }
+    return inverse(block) * r;
+}
 #endif
 
 #if DRAPE_SHAPES > 0 || defined(DRAPE_PASS_MOVE)
@@ -463,6 +515,13 @@ void main() {
     if (wi == 0.0) dn = kinematic_at() - xi;
 #endif
     v_d = vec4(dn, wi);
+#ifdef DRAPE_IMPLICIT
+    // kernels::implicit_predict: dn is the target y; the first iterate is the inertia alone (at
+    // rest exactly 0), kinematic particles their path
+    v_d = vec4(wi != 0.0 ? a_aux.xyz * u_substep.y : dn, wi);
+    v_prev = v_d;
+    v_target = vec4(dn, wi);
+#endif
 #ifdef DRAPE_XPBD
 #if DRAPE_LAMBDA_VEC4 >= 1
     v_lambda0 = vec4(0.0);
@@ -488,6 +547,24 @@ void main() {
 #if DRAPE_LAMBDA_VEC4 >= 8
     v_lambda7 = vec4(0.0);
 #endif
+#endif
+
+#elif defined(DRAPE_PASS_IMPLICIT)
+    // d' = prev + omega (d + gamma D_i^-1 r - prev): the under-relaxed block-Jacobi step, then
+    // Chebyshev's extrapolation from the previous iterate. Its fixed point is r = 0 whatever omega
+    // and gamma: the springs' exact equilibrium at rest. Kinematic particles keep their path.
+    vec3 di = a_x.xyz;  // own iterate
+    vec3 dn = di;
+    if (wi != 0.0) {
+        vec3 jacobi = di + u_chebyshev.y * jacobi_step(row, count, di, a_aux.xyz, a_target.xyz, wi);
+        dn = a_prev.xyz + u_chebyshev.x * (jacobi - a_prev.xyz);
+    }
+    v_d = vec4(dn, wi);
+#ifdef DRAPE_COMMIT
+    v_x = vec4(a_aux.xyz + dn, wi);
+#else
+    v_prev = a_x;
+    v_target = a_target;
 #endif
 
 #elif defined(DRAPE_PASS_CONSTRAINT)

@@ -27,7 +27,7 @@ struct GlCalls {
         GlCalls c;
         c.total = n(nullptr);
         c.draws = n("glDrawArrays");
-        c.uniforms = n("glUniform1i") + n("glUniform1f") + n("glUniform3fv") + n("glUniform4fv");
+        c.uniforms = n("glUniform1i") + n("glUniform1f") + n("glUniform2f") + n("glUniform3fv") + n("glUniform4fv");
         // The loader has no glReadPixels or glGetBufferSubData: mapping is the only way to read.
         c.reads = n("glMapBufferRange");
         // Client memory enters GL only through these (table textures go through a staging buffer).
@@ -76,7 +76,8 @@ class GlesCallBudget : public WithHeadlessGles<::testing::TestWithParam<BudgetCa
 // bound on their units once, error checks, the output buffer's size check, the pin-start copy.
 constexpr uint64_t kCallsPerPass = 16;
 constexpr uint64_t kCallsPerFrame = 100;
-// Uniforms per pass: u_substep and the two input samplers' units, or the colliders' two. The
+// Uniforms per pass: u_substep (IMPLICIT's iterations: u_chebyshev) and the two input samplers'
+// units, or the colliders' two. The
 // parameters live in a uniform block, uploaded only when they change.
 constexpr uint64_t kUniformsPerPass = 3;
 
@@ -182,7 +183,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BudgetCase{"Xpbd_Tethers", DRAPE_MODEL_XPBD, Extra::Tethers},
                       BudgetCase{"Xpbd_Colliders", DRAPE_MODEL_XPBD, Extra::CollidersAndTethers},
                       BudgetCase{"MassSpring_Drag", DRAPE_MODEL_MASS_SPRING, Extra::DragAndTethers},
-                      BudgetCase{"Xpbd_Drag", DRAPE_MODEL_XPBD, Extra::DragAndTethers}),
+                      BudgetCase{"Xpbd_Drag", DRAPE_MODEL_XPBD, Extra::DragAndTethers},
+                      BudgetCase{"Implicit", DRAPE_MODEL_IMPLICIT, Extra::None},
+                      BudgetCase{"Implicit_Tethers", DRAPE_MODEL_IMPLICIT, Extra::Tethers},
+                      BudgetCase{"Implicit_Colliders", DRAPE_MODEL_IMPLICIT, Extra::CollidersAndTethers}),
     [](const ::testing::TestParamInfo<BudgetCase>& info) { return std::string(info.param.name); });
 
 }  // namespace

@@ -135,7 +135,7 @@ struct Soak {
             case 0: {
                 drape_params p{};
                 drape_params_default(&p);
-                p.model = pick(0, info.backend == DRAPE_BACKEND_GLES ? 2 : 3);  // IMPLICIT: CPU backends
+                p.model = pick(0, 3);
                 for (float& k : p.stiffness) k = p.model == DRAPE_MODEL_PBD ? uni(0, 1) : uni(0, 3000);
                 if (p.model == DRAPE_MODEL_MASS_SPRING) {
                     for (float& k : p.stiffness) k *= 0.05f;  // keeps the automatic substeps low

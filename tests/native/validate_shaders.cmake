@@ -37,6 +37,7 @@ foreach(slots 12 32)
     check(sim.vert.glsl vert -DDRAPE_PASS_PREDICT -DDRAPE_DASHPOT -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=1 ${kin})
     check(sim.vert.glsl vert -DDRAPE_PASS_PREDICT -DDRAPE_XPBD -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=${record}
           -DDRAPE_LAMBDA_VEC4=${lambdas} ${kin})
+    check(sim.vert.glsl vert -DDRAPE_PASS_PREDICT -DDRAPE_IMPLICIT -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=3 ${kin})
   endforeach()
   check(sim.vert.glsl vert -DDRAPE_PASS_TETHER -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=1)
   check(sim.vert.glsl vert -DDRAPE_PASS_MOVE -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=1)
@@ -50,6 +51,7 @@ foreach(slots 12 32)
     check(sim.vert.glsl vert -DDRAPE_PASS_CONSTRAINT -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=1 ${commit})
     check(sim.vert.glsl vert -DDRAPE_PASS_CONSTRAINT -DDRAPE_XPBD -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=${record}
           -DDRAPE_LAMBDA_VEC4=${lambdas} ${commit})
+    check(sim.vert.glsl vert -DDRAPE_PASS_IMPLICIT -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=3 ${commit})
   endforeach()
 endforeach()
 # Output variants: position only, normal only, both with copied-through bytes.

@@ -60,12 +60,15 @@ ENUMS = [
         ("DRAPE_MODEL_PBD", 1, "stretch constraints, stiffness in [0,1] (paper eq. 4-8)"),
         ("DRAPE_MODEL_XPBD", 2, "compliance = 1/stiffness in physical units, one Jacobi pass per iteration. "
                                 "Rests softer than its springs with few iterations"),
-        ("DRAPE_MODEL_IMPLICIT", 3, "implicit Euler on the same springs (N/m): exact force residual, prefactored "
-                                    "sparse Cholesky preconditioner; rests exactly at the springs' equilibrium "
-                                    "whatever the budget. CPU backends only"),
-        ("DRAPE_MODEL_AUTO", 4, "the default: the backend's model that rests at the springs' equilibrium, "
-                                "IMPLICIT on CPU and CPU_THREADED; XPBD on GLES (IMPLICIT has no GLES form yet). "
-                                "A cloth stores the model it resolved to (drape_cloth_get_params reports it)"),
+        ("DRAPE_MODEL_IMPLICIT", 3, "implicit Euler on the same springs (N/m): exact force residual, solved by "
+                                    "conjugate gradients on a prefactored sparse Cholesky (CPU) or by block-Jacobi "
+                                    "passes with Chebyshev acceleration (GLES); rests exactly at the springs' "
+                                    "equilibrium whatever the budget (GLES settles more slowly and stretches more "
+                                    "in motion)"),
+        ("DRAPE_MODEL_AUTO", 4, "the default: IMPLICIT on CPU and CPU_THREADED, which rests at the springs' "
+                                "equilibrium; XPBD on GLES (GLES IMPLICIT settles too slowly in motion to be the "
+                                "default yet). A cloth stores the model it resolved to (drape_cloth_get_params "
+                                "reports it)"),
     ]),
     enum("drape_group", "Group", "Spring / constraint groups of the 12-neighbour stencil (grid) or of a mesh.",
          cs_prefix="DRAPE_GROUP_", values=[
@@ -144,10 +147,11 @@ STRUCTS = [
                field("air_drag", "f32", "a += air_drag*(wind - v)", unit="1/s", default=0.1, range=(0, 1000)),
                field("substeps", "u32",
                      "per step; 0 = automatic (MASS_SPRING: from the stability bound, see drape_estimate_stability; "
-                     "PBD, XPBD: 16 \"small steps\"; IMPLICIT: 2). Automatic or given, at most DRAPE_MAX_SUBSTEPS",
+                     "PBD, XPBD: 16 \"small steps\"; IMPLICIT: 2, on GLES one per 1/120 s of the step). Automatic or given, "
+                     "at most DRAPE_MAX_SUBSTEPS",
                      default=0, range=(0, "DRAPE_MAX_SUBSTEPS")),
-               field("iterations", "u32", "solver iterations per substep (PBD, XPBD, IMPLICIT; IMPLICIT: at most, "
-                     "fewer once converged); 0 = automatic (IMPLICIT: 4, PBD and XPBD: 1)", default=0, range=(0, "DRAPE_MAX_ITERATIONS")),
+               field("iterations", "u32", "solver iterations per substep (PBD, XPBD, IMPLICIT; IMPLICIT on the CPU: at most, "
+                     "fewer once converged); 0 = automatic (IMPLICIT: 4, on GLES 8; PBD and XPBD: 1)", default=0, range=(0, "DRAPE_MAX_ITERATIONS")),
                field("max_stretch", "f32",
                      "tethers (long-range attachments, Kim et al. 2012): every particle stays within "
                      "(1 + max_stretch) x its rest distance along the cloth to the nearest pinned particle. "

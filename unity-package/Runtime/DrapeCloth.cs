@@ -127,7 +127,8 @@ namespace Drape
                  "XPBD: stiffness in N/m, independent of step and iterations; rests softer than its springs. " +
                  "PBD: the paper's position-based model, stiffness is a fraction per iteration (0..1). " +
                  "Mass-spring: the paper's explicit springs; needs substeps when stiff. " +
-                 "Implicit: implicit Euler on the same springs (N/m), stable at any stiffness (CPU).")]
+                 "Implicit: implicit Euler on the same springs (N/m), rests exactly at their equilibrium, stable at any " +
+                 "stiffness (the GPU settles more slowly and stretches more in motion than the CPU).")]
         [SerializeField, FormerlySerializedAs("Model")] private Model _model = Model.Auto;
         [Tooltip("Mass-spring, XPBD and implicit: stretch springs (grid neighbours, mesh edges), N/m per spring.")]
         [SerializeField, FormerlySerializedAs("StructuralStiffness")] private float _structuralStiffness = 2000f;
@@ -151,7 +152,7 @@ namespace Drape
         [SerializeField, FormerlySerializedAs("AirDrag"), Range(0f, 10f)] private float _airDrag = 0.1f;
         [Tooltip("Substeps per step. 0 = automatic (mass-spring: from the stability bound; PBD/XPBD: 16).")]
         [SerializeField, FormerlySerializedAs("Substeps"), Range(0, 64)] private int _substeps = 0;
-        [Tooltip("Solver iterations per substep (PBD, XPBD, implicit). 0 = automatic (implicit: 4; PBD, XPBD: 1). " +
+        [Tooltip("Solver iterations per substep (PBD, XPBD, implicit). 0 = automatic (implicit: 4, on the GPU 8; PBD, XPBD: 1). " +
                  "More substeps beat more iterations at equal cost.")]
         [SerializeField, FormerlySerializedAs("Iterations"), Range(0, 32)] private int _iterations = 0;
         [Tooltip("Tethers: no vertex gets further than (1 + this) times its rest distance along the cloth from " +

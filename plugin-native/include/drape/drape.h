@@ -245,12 +245,15 @@ typedef enum drape_model {
     DRAPE_MODEL_PBD = 1, /**< stretch constraints, stiffness in [0,1] (paper eq. 4-8) */
     DRAPE_MODEL_XPBD = 2, /**< compliance = 1/stiffness in physical units, one Jacobi pass per iteration.
                                Rests softer than its springs with few iterations */
-    DRAPE_MODEL_IMPLICIT = 3, /**< implicit Euler on the same springs (N/m): exact force residual, prefactored
-                                   sparse Cholesky preconditioner; rests exactly at the springs' equilibrium
-                                   whatever the budget. CPU backends only */
-    DRAPE_MODEL_AUTO = 4 /**< the default: the backend's model that rests at the springs' equilibrium,
-                              IMPLICIT on CPU and CPU_THREADED; XPBD on GLES (IMPLICIT has no GLES form yet).
-                              A cloth stores the model it resolved to (drape_cloth_get_params reports it) */
+    DRAPE_MODEL_IMPLICIT = 3, /**< implicit Euler on the same springs (N/m): exact force residual, solved by
+                                   conjugate gradients on a prefactored sparse Cholesky (CPU) or by
+                                   block-Jacobi passes with Chebyshev acceleration (GLES); rests exactly at
+                                   the springs' equilibrium whatever the budget (GLES settles more slowly and
+                                   stretches more in motion) */
+    DRAPE_MODEL_AUTO = 4 /**< the default: IMPLICIT on CPU and CPU_THREADED, which rests at the springs'
+                              equilibrium; XPBD on GLES (GLES IMPLICIT settles too slowly in motion to be the
+                              default yet). A cloth stores the model it resolved to (drape_cloth_get_params
+                              reports it) */
 } drape_model;
 /* GENERATED END drape_model */
 
@@ -277,11 +280,12 @@ typedef struct drape_params {
     float wind[3]; /**< m/s, air velocity. Length <= 10000. Default (0, 0, 0) */
     float air_drag; /**< 1/s, a += air_drag*(wind - v). Range [0, 1000]. Default 0.1 */
     uint32_t substeps; /**< per step; 0 = automatic (MASS_SPRING: from the stability bound, see
-                            drape_estimate_stability; PBD, XPBD: 16 "small steps"; IMPLICIT: 2). Automatic or
-                            given, at most DRAPE_MAX_SUBSTEPS. Range [0, DRAPE_MAX_SUBSTEPS]. Default 0 */
-    uint32_t iterations; /**< solver iterations per substep (PBD, XPBD, IMPLICIT; IMPLICIT: at most, fewer
-                              once converged); 0 = automatic (IMPLICIT: 4, PBD and XPBD: 1). Range [0,
-                              DRAPE_MAX_ITERATIONS]. Default 0 */
+                            drape_estimate_stability; PBD, XPBD: 16 "small steps"; IMPLICIT: 2, on GLES one
+                            per 1/120 s of the step). Automatic or given, at most DRAPE_MAX_SUBSTEPS. Range
+                            [0, DRAPE_MAX_SUBSTEPS]. Default 0 */
+    uint32_t iterations; /**< solver iterations per substep (PBD, XPBD, IMPLICIT; IMPLICIT on the CPU: at
+                              most, fewer once converged); 0 = automatic (IMPLICIT: 4, on GLES 8; PBD and
+                              XPBD: 1). Range [0, DRAPE_MAX_ITERATIONS]. Default 0 */
     float max_stretch; /**< tethers (long-range attachments, Kim et al. 2012): every particle stays within (1
                             + max_stretch) x its rest distance along the cloth to the nearest pinned particle.
                             Fraction; 0 = off. Range [0, 100]. Default 0.1 */

@@ -114,9 +114,9 @@ public:
     }
 
     /// Substeps a step of dt uses with the current parameters.
-    uint32_t substeps_for(float dt) const;
+    virtual uint32_t substeps_for(float dt) const;
     /// Iterations per substep with the current parameters (0 in drape_params = automatic).
-    uint32_t iterations_for() const;
+    virtual uint32_t iterations_for() const;
 
     /// The point the cloth's coordinates are measured from, in the caller's space, m. Every
     /// position held by the cloth is relative to it (float precision does not depend on where the

@@ -55,13 +55,14 @@ namespace Drape.Core
         /// <summary>Compliance = 1/stiffness in physical units, one Jacobi pass per iteration. Rests softer
         /// than its springs with few iterations.</summary>
         Xpbd = 2,
-        /// <summary>Implicit Euler on the same springs (N/m): exact force residual, prefactored sparse
-        /// Cholesky preconditioner; rests exactly at the springs' equilibrium whatever the budget. CPU
-        /// backends only.</summary>
+        /// <summary>Implicit Euler on the same springs (N/m): exact force residual, solved by conjugate
+        /// gradients on a prefactored sparse Cholesky (CPU) or by block-Jacobi passes with Chebyshev
+        /// acceleration (GLES); rests exactly at the springs' equilibrium whatever the budget (GLES settles
+        /// more slowly and stretches more in motion).</summary>
         Implicit = 3,
-        /// <summary>The default: the backend's model that rests at the springs' equilibrium, IMPLICIT on CPU
-        /// and CPU_THREADED; XPBD on GLES (IMPLICIT has no GLES form yet). A cloth stores the model it
-        /// resolved to (drape_cloth_get_params reports it).</summary>
+        /// <summary>The default: IMPLICIT on CPU and CPU_THREADED, which rests at the springs' equilibrium;
+        /// XPBD on GLES (GLES IMPLICIT settles too slowly in motion to be the default yet). A cloth stores
+        /// the model it resolved to (drape_cloth_get_params reports it).</summary>
         Auto = 4,
     }
 

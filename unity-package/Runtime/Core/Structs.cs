@@ -96,12 +96,13 @@ namespace Drape.Core
         /// <summary>1/s, a += air_drag*(wind - v). Range [0, 1000]. Default 0.1.</summary>
         public float AirDrag;
         /// <summary>Per step; 0 = automatic (MASS_SPRING: from the stability bound, see
-        /// drape_estimate_stability; PBD, XPBD: 16 "small steps"; IMPLICIT: 2). Automatic or given, at most
-        /// DRAPE_MAX_SUBSTEPS. Range [0, DRAPE_MAX_SUBSTEPS]. Default 0.</summary>
-        public uint Substeps;
-        /// <summary>Solver iterations per substep (PBD, XPBD, IMPLICIT; IMPLICIT: at most, fewer once
-        /// converged); 0 = automatic (IMPLICIT: 4, PBD and XPBD: 1). Range [0, DRAPE_MAX_ITERATIONS]. Default
+        /// drape_estimate_stability; PBD, XPBD: 16 "small steps"; IMPLICIT: 2, on GLES one per 1/120 s of the
+        /// step). Automatic or given, at most DRAPE_MAX_SUBSTEPS. Range [0, DRAPE_MAX_SUBSTEPS]. Default
         /// 0.</summary>
+        public uint Substeps;
+        /// <summary>Solver iterations per substep (PBD, XPBD, IMPLICIT; IMPLICIT on the CPU: at most, fewer
+        /// once converged); 0 = automatic (IMPLICIT: 4, on GLES 8; PBD and XPBD: 1). Range [0,
+        /// DRAPE_MAX_ITERATIONS]. Default 0.</summary>
         public uint Iterations;
         /// <summary>Tethers (long-range attachments, Kim et al. 2012): every particle stays within (1 +
         /// max_stretch) x its rest distance along the cloth to the nearest pinned particle. Fraction; 0 =

@@ -33,11 +33,12 @@ enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3, kTether
 // move. u_x / u_aux: the texture units of the pass's input buffers (see kNbrUnit).
 enum Uniform {
     uSubstep, uShapes, uShapeCount, uDragViews, uTouches, uTouchCount, uMoveRot, uMovePivot, uMoveTo,
-    uMoveKeepVelocity, uStillLimit2, uX, uAux, kUniformCount
+    uMoveKeepVelocity, uStillLimit2, uX, uAux, uChebyshev, kUniformCount
 };
 const char* const kUniformNames[kUniformCount] = {
     "u_substep", "u_shapes",     "u_shape_count", "u_drag_views",         "u_touches", "u_touch_count",
-    "u_move_rot", "u_move_pivot", "u_move_to",     "u_move_keep_velocity", "u_still_limit2", "u_x", "u_aux"};
+    "u_move_rot", "u_move_pivot", "u_move_to",     "u_move_keep_velocity", "u_still_limit2", "u_x", "u_aux",
+    "u_chebyshev"};
 static_assert(kUniformCount <= GlesCloth::kMaxUniforms, "GlesCloth::Program::u holds every location");
 // Attribute locations (bound before linking).
 enum Attrib {
@@ -45,6 +46,27 @@ enum Attrib {
     aParticle = 0, aKeep0 = 1
 };
 constexpr int kMaxAttribs = 16;
+// IMPLICIT's iterate record: displacement iterate, previous iterate (a_prev), target (a_target).
+constexpr uint32_t kImplicitRecordVec4 = 3;
+// IMPLICIT on GLES (sim.vert.glsl DRAPE_PASS_IMPLICIT): `iterations` block-Jacobi steps under-relaxed
+// by gamma, accelerated by Chebyshev for the interval [-rho, rho] (Wang 2015). Neither changes the
+// fixed point (the exact equilibrium), only how fast it is reached, and whether time stepping on
+// an unfinished solve is stable. The block-Jacobi matrix D^-1 H has its eigenvalues below 2
+// (sim.vert.glsl jacobi_step) and above 0 unless compressed springs outweigh the mass term, so the damped step's lie in (1 - 2 gamma, 1) and
+// gamma = (1 + rho) / 2 puts them in (-rho, 1), where the iteration leaves an error component a share P(lambda) of its
+// start, |P| <= 1/T_K(1/rho) on [-rho, rho]. A substep starts from the inertia d_prev, so a stiff
+// mode (implicit Euler's answer ~ -x) continues as x' = p e, e' = -x + 2 p e (e = x + d): stable
+// for p > -1/3. rho is therefore the largest whose Chebyshev polynomial stays above
+// -kImplicitChebyshevFloor: T_K(1/rho) = 1 / floor (measured: a fixed rho = 0.95 blew up with
+// fewer than 6 iterations per substep).
+constexpr double kImplicitChebyshevFloor = 0.25;
+struct Chebyshev {
+    float rho, gamma;
+};
+Chebyshev implicit_chebyshev(uint32_t iterations) {
+    const double rho = 1.0 / std::cosh(std::acosh(1.0 / kImplicitChebyshevFloor) / double(iterations));
+    return {float(rho), float(0.5 * (1.0 + rho))};
+}
 // Texture units, bound once per step (begin_passes): particle texture b on unit b, so a pass picks
 // its inputs by pointing u_x / u_aux at a buffer's unit; then the tables, whose samplers are set
 // once when a program is linked. kSetupUnit: creating and uploading textures outside the passes.
@@ -430,6 +452,7 @@ GlesCloth::~GlesCloth() {
 }
 
 uint32_t GlesCloth::record_vec4() const {
+    if (params_.model == DRAPE_MODEL_IMPLICIT) return kImplicitRecordVec4;
     return params_.model == DRAPE_MODEL_XPBD ? 1 + (topo_.nbr.slots + 3) / 4 : 1;
 }
 
@@ -794,8 +817,11 @@ const std::string& GlesCloth::variant_defines(int pass) const {
         d.append(line, size_t(n));
     };
     if (pass == kMassSpring) d += "#define DRAPE_PASS_MASS_SPRING 1\n";
-    if (pass == kPredict) d += "#define DRAPE_PASS_PREDICT 1\n";
-    if (pass == kConstraint || pass == kCommit) d += "#define DRAPE_PASS_CONSTRAINT 1\n";
+    const bool implicit = params_.model == DRAPE_MODEL_IMPLICIT;
+    if (pass == kPredict) d += implicit ? "#define DRAPE_PASS_PREDICT 1\n#define DRAPE_IMPLICIT 1\n"
+                                        : "#define DRAPE_PASS_PREDICT 1\n";
+    if (pass == kConstraint || pass == kCommit)
+        d += implicit ? "#define DRAPE_PASS_IMPLICIT 1\n" : "#define DRAPE_PASS_CONSTRAINT 1\n";
     if (pass == kCommit) d += "#define DRAPE_COMMIT 1\n";
     if (pass == kTether) d += "#define DRAPE_PASS_TETHER 1\n";
     if (pass == kMove) d += "#define DRAPE_PASS_MOVE 1\n";
@@ -828,6 +854,7 @@ Result GlesCloth::program(int pass, Program** out) {
             pass == kMassSpring || pass == kCommit || pass == kTether || pass == kInteract || pass == kMove;
         std::vector<std::string> varyings;
         if (two_outputs) varyings = {"v_x", "v_d"};
+        else if (params_.model == DRAPE_MODEL_IMPLICIT && pass != kStill) varyings = {"v_d", "v_prev", "v_target"};  // iterate record
         else if (pass != kStill) varyings = {"v_d"};  // the sleep check draws, it feeds nothing back
         const bool xpbd = params_.model == DRAPE_MODEL_XPBD && (pass == kPredict || pass == kConstraint);
         if (xpbd)
@@ -837,6 +864,8 @@ Result GlesCloth::program(int pass, Program** out) {
         static const char* const lambda_names[kMaxLambdaVec4] = {"a_lambda0", "a_lambda1", "a_lambda2", "a_lambda3",
                                                                  "a_lambda4", "a_lambda5", "a_lambda6", "a_lambda7"};
         for (uint32_t k = 0; k < kMaxLambdaVec4; ++k) attribs.push_back({aLambda0 + k, lambda_names[k]});
+        attribs.push_back({aLambda0, "a_prev"});  // IMPLICIT's record where XPBD's has lambdas
+        attribs.push_back({aLambda0 + 1, "a_target"});
         attribs.push_back({aTetherAnchor, "a_tether_anchor"});
         attribs.push_back({aTetherLength, "a_tether_length"});
         Program p;
@@ -928,14 +957,16 @@ void GlesCloth::use_uniforms(float h) {
     glBindBufferBase(GL_UNIFORM_BUFFER, kSimUniformsBinding, gl_.uniforms);
 }
 
-void GlesCloth::run_pass(Program& p, int x, int aux, int out, int out2, bool constraint, const glm::vec4& sub) {
+void GlesCloth::run_pass(Program& p, int x, int aux, int out, int out2, bool constraint, const glm::vec4& sub,
+                         const glm::vec2& chebyshev) {
     // Passes that fetch neighbours read x and aux as textures too (predict only with dashpots).
     if (constraint || params_.model == DRAPE_MODEL_MASS_SPRING || predict_has_dashpot()) {
         refresh(x);
         refresh(aux);
     }
     use_program(p, x, aux);
-    glUniform4fv(p.u[uSubstep], 1, &sub.x);
+    if (p.u[uSubstep] >= 0) glUniform4fv(p.u[uSubstep], 1, &sub.x);
+    if (p.u[uChebyshev] >= 0) glUniform2f(p.u[uChebyshev], chebyshev.x, chebyshev.y);
     const uint32_t inputs = constraint ? kIterateRecords : kinematic_.empty() ? 0u : kKinematicInputs;
     draw(vertex_array(x, aux, inputs), out, out2);
 }
@@ -1150,6 +1181,7 @@ Result GlesCloth::gpu_step(float dt) {
     for (size_t v = DRAPE_DRAG_VIEW_VEC4 - 1; v < drag_views_.size(); v += DRAPE_DRAG_VIEW_VEC4)
         drag_views_[v].z = 1.0f / float(substeps);
     use_uniforms(h);
+    const Chebyshev chebyshev = implicit_chebyshev(iterations_for());
     // Buffer roles as CpuCloth::solve: cur (positions x), disp (displacements d), spare, spare2.
     int& cur = g_[0];
     int& disp = g_[1];
@@ -1169,11 +1201,15 @@ Result GlesCloth::gpu_step(float dt) {
             // also writes positions, into the displacement buffer (free after predict).
             run_pass(*p_first, cur, disp, spare, -1, false, sub);
             int in = spare, out = spare2;
+            float omega = 1.0f;  // IMPLICIT: Chebyshev weights (Wang 2015 eq. 12), 1 in the first iteration
+            const float rho2 = chebyshev.rho * chebyshev.rho;
             for (uint32_t it = 0; it < iterations_for(); ++it) {
+                if (it == 1) omega = 2.0f / (2.0f - rho2);
+                else if (it > 1) omega = 4.0f / (4.0f - rho2 * omega);
                 if (it + 1 == iterations_for())
-                    run_pass(*p_commit, in, cur, disp, out, true, sub);  // x -> disp, d -> out
+                    run_pass(*p_commit, in, cur, disp, out, true, sub, {omega, chebyshev.gamma});  // x -> disp, d -> out
                 else
-                    run_pass(*p_constraint, in, cur, out, -1, true, sub);
+                    run_pass(*p_constraint, in, cur, out, -1, true, sub, {omega, chebyshev.gamma});
                 std::swap(in, out);
             }
             // Positions went to the old displacement buffer, displacements to `in`.
@@ -1443,16 +1479,24 @@ Result GlesCloth::stats(drape_stats* out) {
     return {};
 }
 
+uint32_t GlesCloth::substeps_for(float dt) const {
+    if (params_.model != DRAPE_MODEL_IMPLICIT || params_.substeps > 0) return Cloth::substeps_for(dt);
+    const float s = std::ceil(dt / kMaxAutoSubstepImplicitGles - 1e-3f);  // 1/60 s: 2, not 3 by rounding
+    return s < 1 ? 1u : s > float(kMaxSubsteps) ? kMaxSubsteps : uint32_t(s);
+}
+
+uint32_t GlesCloth::iterations_for() const {
+    if (params_.model == DRAPE_MODEL_IMPLICIT && params_.iterations == 0) return kAutoIterationsImplicitGles;
+    return Cloth::iterations_for();
+}
+
 Result GlesCloth::supports(Feature feature) const {
     auto cpu_only = [](const char* what) {
         return Result{DRAPE_ERROR_BACKEND_UNAVAILABLE,
                       std::string(what) + " is not implemented on the GLES backend yet (CPU backends only)"};
     };
     switch (feature) {
-    case Feature::ImplicitModel:
-        return {DRAPE_ERROR_BACKEND_UNAVAILABLE,
-                "model IMPLICIT runs on the CPU backends only (its sparse Cholesky solve has no GLES form yet); "
-                "GLES runs MASS_SPRING, PBD and XPBD"};
+    case Feature::ImplicitModel: return {};  // block Jacobi + Chebyshev passes (sim.vert.glsl)
     case Feature::Grab: return cpu_only("grab");
     case Feature::Owner: return {};  // moved on the GPU (move_gpu_state)
     case Feature::Sleep: return {};  // checked on the GPU (issue_still, poll_still)

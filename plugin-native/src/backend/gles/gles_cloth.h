@@ -107,6 +107,10 @@ public:
     /// Sleep checks in flight at most (steps whose result has not arrived yet); a step finding
     /// them all in flight issues none.
     static constexpr int kStillQueries = 3;
+    /// IMPLICIT's automatic budget on GLES: kAutoIterationsImplicitGles cheap Jacobi passes per
+    /// substep, substeps of at most kMaxAutoSubstepImplicitGles.
+    uint32_t iterations_for() const override;
+    uint32_t substeps_for(float dt) const override;
     /// GL work needs the caller's context: stepped on the thread that steps the world.
     bool steps_on_pool_thread() const override { return false; }
 
@@ -161,8 +165,10 @@ private:
     /// Uploads the DrapeSim block when a value changed (parameters, substep h) and binds it.
     void use_uniforms(float h);
     /// One transform-feedback pass over the particles: reads buffers x and aux, writes `out` (and
-    /// `out2` >= 0 for the two-output passes: out gets v_x, out2 v_d). sub: u_substep.
-    void run_pass(Program& p, int x, int aux, int out, int out2, bool constraint, const glm::vec4& sub);
+    /// `out2` >= 0 for the two-output passes: out gets v_x, out2 v_d). sub: u_substep; chebyshev:
+    /// IMPLICIT's u_chebyshev (this iteration's weight, the Jacobi step's under-relaxation).
+    void run_pass(Program& p, int x, int aux, int out, int out2, bool constraint, const glm::vec4& sub,
+                  const glm::vec2& chebyshev = glm::vec2(1.0f));
     /// A RigidMove of the GPU state (owner transform, re-centring): x and d into the spare pair,
     /// which becomes x and d.
     void move_gpu_state(Program& p, const RigidMove& m);
