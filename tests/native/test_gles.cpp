@@ -662,7 +662,8 @@ TEST_F(GlesImplicit, StiffCurtainRestsAtTheFloatFloor) {
 // passes per substep, CPU: 4 conjugate-gradient iterations on a global preconditioner): GLES
 // answers slowly varying forces more slowly (measured: 5.9 mm apart at most in the first second,
 // of a 40.8 mm sag), so they are held to a quarter of the sag in motion, not to rounding; at rest
-// both are the springs' equilibrium (measured 3.3e-6 m apart).
+// both are the springs' equilibrium within R13's 0.5 % of the sag each (measured 4.4e-5 m apart:
+// the CPU's solve stops once converged to its tolerance), so 1 % apart.
 TEST_F(GlesImplicit, MatchesCpuImplicitInMotionAndAtRest) {
     const RestScene scene{Scene::Sheet, 17, 1};
     RestSetup cpu = make_scene(scene, DRAPE_MODEL_IMPLICIT, DRAPE_BACKEND_CPU);
@@ -684,7 +685,7 @@ TEST_F(GlesImplicit, MatchesCpuImplicitInMotionAndAtRest) {
                 "%.2e m at rest\n",
                 sag, worst, at_rest);
     EXPECT_LT(worst, 0.25 * sag);
-    EXPECT_LT(at_rest, 1e-3 * sag);
+    EXPECT_LT(at_rest, 1e-2 * sag);
 }
 
 // Stress: stiff springs (1e5 N/m in every group) on a cloth dropped from flat, hanging from two
