@@ -301,7 +301,7 @@ INSTANTIATE_TEST_SUITE_P(
                       InteractCase{"MassSpring_Drag", DRAPE_MODEL_MASS_SPRING, Interact::Drag}),
     [](const ::testing::TestParamInfo<InteractCase>& info) { return std::string(info.param.name); });
 
-// The default model (AUTO) runs XPBD on GLES, which has no IMPLICIT form yet; the cloth reports it.
+// The default model (AUTO) runs XPBD on GLES (its IMPLICIT form is opt-in: slower to settle in motion); the cloth reports it.
 TEST_F(Gles, DefaultModelIsXpbd) {
     WorldPtr w = make_world(1);
     drape_cloth_desc d{sizeof d, DRAPE_BACKEND_GLES, 0.5f};
