@@ -51,7 +51,7 @@ void CpuCloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& k
     Particle* iterate = spare2_.data();
     for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_predict(c, cur, disp, target, iterate, b, e); });
     for (uint32_t k : kinematic_) target[k] = iterate[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
-    if (!(std::fabs(implicit_.h() / c.h - 1.0f) < kImplicitRefactor)) factor_implicit(c.h);  // dt changed a lot
+    if (!(std::fabs(implicit_.h() / last_h_ - 1.0f) < kImplicitRefactor)) factor_implicit(last_h_);  // dt changed a lot
     const uint32_t taken = implicit_.solve(c, cur, target, iterate, iterations_, kImplicitTolerance,
                                            backend_ == DRAPE_BACKEND_CPU_THREADED ? &world_.pool() : nullptr);
     implicit_iterations_ = std::max(implicit_iterations_, taken);
@@ -102,10 +102,14 @@ void CpuCloth::begin(float dt) {
     // Plan: substeps and iterations from the parameters; the state backed up for a rollback.
     const uint32_t n = topo_.particle_count;
     substeps_ = substeps_for(dt);
+    // IMPLICIT's factor follows the planned substep, not one a passing collider shortened for a
+    // frame or two (refactoring allocates and costs many steps).
+    last_h_ = dt / float(substeps_);
+    if (params_.substeps == 0 && !ix_.colliders.empty())
+        substeps_ = std::min(kMaxSubsteps, std::max(substeps_, collider_substeps(dt)));
     h_ = dt / float(substeps_);
     iterations_ = iterations_for();
     implicit_iterations_ = 0;
-    last_h_ = h_;
     std::memcpy(backup_x_.data(), x_.data(), n * sizeof(Particle));
     std::memcpy(backup_d_.data(), d_.data(), n * sizeof(Particle));
     backup_h_prev_ = h_prev_;

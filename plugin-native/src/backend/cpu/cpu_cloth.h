@@ -41,6 +41,9 @@ private:
     void self_collide();
     /// Touch drag (first substep) and colliders (cpu_collide.cpp).
     void collide(uint32_t sub);
+    /// Substeps the automatic budget needs for the colliders that move near the cloth this step
+    /// (kColliderTravelPerSubstep; 1 if none, cpu_collide.cpp).
+    uint32_t collider_substeps(float dt) const;
     struct VerifyPartial {
         bool finite;
         float max_strain_all, max_strain, sum_sq;

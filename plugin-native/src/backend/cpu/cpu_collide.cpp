@@ -56,6 +56,35 @@ float lowest_above_plane(const Aabb& b, const glm::vec3& p, const glm::vec3& n) 
 
 }  // namespace
 
+uint32_t CpuCloth::collider_substeps(float dt) const {
+    // Near: the collider's bounds over the step touch the cloth's, grown by the cloth's fastest
+    // particle's travel over the step (its last substep's displacement scaled to dt).
+    Aabb cloth;
+    float reach = 0;
+    for (uint32_t i = 0; i < topo_.particle_count; ++i) {
+        cloth.add(glm::vec3(x_[i]));
+        reach = std::max(reach, glm::length(glm::vec3(d_[i])));
+    }
+    if (h_prev_ > 0) reach *= dt / h_prev_;
+    cloth.lo -= reach;
+    cloth.hi += reach;
+    uint32_t needed = 1;
+    for (const ColliderState& c : ix_.colliders) {
+        const float travel = glm::length(c.pos_end - c.pos_start);
+        if (c.shape == DRAPE_COLLIDER_PLANE || travel == 0) continue;  // a plane cannot be passed around
+        const CollideShape s = c.at_substep(0, 1);
+        Aabb swept;
+        add_shape_bounds(swept, s, s.pos0, s.rot0);
+        add_shape_bounds(swept, s, s.pos1, s.rot1);
+        if (!swept.overlaps(cloth)) continue;
+        const float smallest =
+            (c.shape == DRAPE_COLLIDER_BOX ? std::min({c.size.x, c.size.y, c.size.z}) : c.size.x) + c.margin;
+        const float s_needed = std::ceil(travel / (kColliderTravelPerSubstep * smallest));
+        needed = std::max(needed, s_needed >= float(kMaxSubsteps) ? kMaxSubsteps : uint32_t(s_needed));
+    }
+    return needed;
+}
+
 void CpuCloth::collide(uint32_t sub) {
     ProfileScope scope(profile_, DRAPE_STAGE_COLLIDE);
     const uint32_t substeps = substeps_;

@@ -229,10 +229,11 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         const Dots dots = precondition(r_.data(), r_prev_.data(), first ? p_.data() : z_.data(), pool);
         ++it;
         if (!(dots.rz > 0)) break;  // r = 0: at the minimum
-        if (max_iterations == 1) {
+        if (max_iterations == 1 && h_ < c.h * (1.0f + kImplicitRefactor)) {
             // A single iteration needs no step length: A bounds the (clamped) Hessian, so the plain
             // step d += A^-1 r lowers Phi, and it solves the linear part (rigid motion, stretch
-            // along the load) at once.
+            // along the load) at once. Not when A was built for a longer substep (a fast collider
+            // added substeps): its mass term is then smaller than the Hessian's.
             move(p_, 1.0f);
             break;
         }
