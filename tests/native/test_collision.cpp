@@ -168,7 +168,9 @@ TEST(Collision, FastSphereDoesNotTunnel) {
 
 // A cloth hanging over a box corner, more of it off the box than on it. With friction it stays
 // (the pull of the hanging part is below mu times the normal force); frictionless it slides off.
+// XPBD and the default (IMPLICIT: its solve must not press the cloth into a frictionless box edge).
 TEST(Collision, FrictionHoldsAClothOnABoxCorner) {
+    for (drape_model model : {DRAPE_MODEL_XPBD, DRAPE_MODEL_AUTO}) {
     float moved[2];
     const float frictions[2] = {1.0f, 0.0f};
     for (int k = 0; k < 2; ++k) {
@@ -176,7 +178,7 @@ TEST(Collision, FrictionHoldsAClothOnABoxCorner) {
         drape_collider box = collider(DRAPE_COLLIDER_BOX, 0, 0, 0, 0.25f, 0.25f, 0.25f);
         box.friction = frictions[k];
         // Cloth 1 m, centre at (0.1, 0.27, 0.1): 0.35 m hang off the +x/+z sides, 0.15 m off -x/-z.
-        drape_cloth* c = horizontal_cloth(w.get(), 33, 1.0f, 0.1f, 0.27f, 0.1f);
+        drape_cloth* c = horizontal_cloth(w.get(), 33, 1.0f, 0.1f, 0.27f, 0.1f, DRAPE_BACKEND_CPU, model);
         ASSERT_DRAPE_OK(drape_cloth_set_colliders(c, &box, 1));
         const uint32_t mid = 16 * 33 + 16;
         for (int f = 0; f < 60; ++f) ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));  // drape: 1 s
@@ -184,12 +186,13 @@ TEST(Collision, FrictionHoldsAClothOnABoxCorner) {
         for (int f = 0; f < 180; ++f) ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));  // then 3 s more
         const std::vector<float> b = positions(c);
         moved[k] = std::hypot(b[3 * mid] - a[3 * mid], b[3 * mid + 2] - a[3 * mid + 2]);
-        std::printf("[ measured ] box corner, friction %.1f: centre slid %.4f m in 3 s (y %.3f)\n", frictions[k],
-                    moved[k], b[3 * mid + 1]);
+        std::printf("[ measured ] box corner, %s, friction %.1f: centre slid %.4f m in 3 s (y %.3f)\n",
+                    model == DRAPE_MODEL_XPBD ? "XPBD" : "default", frictions[k], moved[k], b[3 * mid + 1]);
         EXPECT_LE(max_penetration(box, b), 1e-5f);
     }
-    EXPECT_LT(moved[0], 0.01f) << "friction should hold the cloth";
-    EXPECT_GT(moved[1], 0.1f) << "without friction the heavier side pulls it off";
+    EXPECT_LT(moved[0], 0.01f) << "friction should hold the cloth (model " << model << ")";
+    EXPECT_GT(moved[1], 0.1f) << "without friction the heavier side pulls it off (model " << model << ")";
+    }
 }
 
 // Skipping: no colliders, an empty list, or colliders whose bounds do not touch the cloth's give

@@ -44,10 +44,13 @@ using std::sqrt;
 /// friction (|t| <= mu d) removes t, kinetic friction shortens it by mu d.
 /// The substep start is x - d (d: displacement over the substep, kernels.h); a push moves x and
 /// d together, so the velocity after the substep includes it.
+/// normal (optional): the outward surface normal of the last frictionless collider that moved
+/// particle i, 0 if none did (for the IMPLICIT solve of the next substep, implicit_solve.h).
 inline void collide(const CollideShape* shapes, uint32_t shape_count, glm::vec4* x, glm::vec4* d,
-                    uint32_t begin, uint32_t end) {
+                    glm::vec3* normal, uint32_t begin, uint32_t end) {
     for (uint32_t i = begin; i < end; ++i) {
         const float w = x[i].w;
+        if (normal) normal[i] = glm::vec3(0.0f);
         if (w == 0.0f) continue;  // kinematic: goes where its pin says
         const glm::vec3 x_in(x[i]);
         glm::vec3 xi = x_in;
@@ -57,7 +60,13 @@ inline void collide(const CollideShape* shapes, uint32_t shape_count, glm::vec4*
             const glm::vec3 p0 = glm::conjugate(c.rot0) * (si - c.pos0);
             const glm::vec3 p1 = glm::conjugate(c.rot1) * (xi - c.pos1);
             glm::vec3 q;
-            if (glsl::collide_local(int(c.shape), c.size, c.margin, c.friction, p0, p1, q)) xi = c.rot1 * q + c.pos1;
+            if (!glsl::collide_local(int(c.shape), c.size, c.margin, c.friction, p0, p1, q)) continue;
+            xi = c.rot1 * q + c.pos1;
+            if (normal && c.friction == 0.0f) {
+                glm::vec3 n;
+                glsl::shape_distance(int(c.shape), c.size, q, n);
+                normal[i] = c.rot1 * n;
+            }
         }
         if (xi == x_in) continue;
         x[i] = glm::vec4(xi, w);

@@ -20,6 +20,7 @@ CpuCloth::CpuCloth(World& world, drape_backend backend, std::shared_ptr<const De
     spare2_.resize(n);
     lambda_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
     target_.resize(n);
+    contact_normal_.resize(n);
     slot_coef_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
     kinematic_start_.resize(n);
     backup_x_.resize(n);
@@ -53,7 +54,9 @@ void CpuCloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& k
     for (uint32_t k : kinematic_) target[k] = iterate[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
     if (!(std::fabs(implicit_.h() / last_h_ - 1.0f) < kImplicitRefactor)) factor_implicit(last_h_);  // dt changed a lot
     const uint32_t taken = implicit_.solve(c, cur, target, iterate, iterations_, kImplicitTolerance,
-                                           backend_ == DRAPE_BACKEND_CPU_THREADED ? &world_.pool() : nullptr);
+                                           backend_ == DRAPE_BACKEND_CPU_THREADED ? &world_.pool() : nullptr,
+                                           contact_fresh_ ? contact_normal_.data() : nullptr);
+    contact_fresh_ = false;
     implicit_iterations_ = std::max(implicit_iterations_, taken);
     // Commit: positions start + d into the old displacement buffer, d becomes the state.
     for_particles([&](uint32_t b, uint32_t e) {

@@ -79,6 +79,10 @@ private:
     // IMPLICIT model (implicit_substep): the substep's inertial target and the prefactored
     // matrix (backend/cpu/implicit_solve.h).
     std::vector<Particle> target_;
+    /// IMPLICIT: per particle the normal of the frictionless collider the last collision pass moved
+    /// it out of (0: none), for the next substep's solve; contact_fresh_ says the last substep wrote it.
+    std::vector<glm::vec3> contact_normal_;
+    bool contact_fresh_ = false;
     ImplicitSolve implicit_;
     template <class KinematicAt>
     void implicit_substep(kernels::SubstepContext& c, const KinematicAt& kinematic_at);

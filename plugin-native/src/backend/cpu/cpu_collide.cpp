@@ -132,7 +132,9 @@ void CpuCloth::collide(uint32_t sub) {
     ix_.collide_tests += uint64_t(n) * shapes_.size();
     const CollideShape* shapes = shapes_.data();
     const uint32_t count = uint32_t(shapes_.size());
-    for_particles([&](uint32_t b, uint32_t e) { kernels::collide(shapes, count, x, d, b, e); });
+    glm::vec3* normal = params_.model == DRAPE_MODEL_IMPLICIT ? contact_normal_.data() : nullptr;
+    for_particles([&](uint32_t b, uint32_t e) { kernels::collide(shapes, count, x, d, normal, b, e); });
+    contact_fresh_ = normal != nullptr;
 }
 
 void CpuCloth::self_collide() {

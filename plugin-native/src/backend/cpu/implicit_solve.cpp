@@ -157,6 +157,7 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     y_.resize(m);
     sep_sum_.resize(size_t(sep_count) * kParts);
     for (std::vector<Particle>* v : {&r_, &r_prev_, &z_, &p_}) v->assign(n, Particle(0.0f));
+    in_contact_.reserve(n);
     block_sum_.assign((n + kBlock - 1) / kBlock, 0.0);
     h_ = h;
 }
@@ -179,12 +180,27 @@ double ImplicitSolve::over_blocks(ThreadPool* pool, Fn&& fn) {
 }
 
 uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* start, const Particle* target,
-                              Particle* iterate, uint32_t max_iterations, float tolerance, ThreadPool* pool) {
-    // r at the iterate, and r . p when p is given (the line search's slope at the new point).
+                              Particle* iterate, uint32_t max_iterations, float tolerance, ThreadPool* pool,
+                              const glm::vec3* contact_normal) {
+    in_contact_.clear();
+    if (contact_normal)
+        for (uint32_t i = 0; i < uint32_t(r_.size()); ++i)
+            if (contact_normal[i] != glm::vec3(0.0f)) in_contact_.push_back(i);
+    normal_ = in_contact_.empty() ? nullptr : contact_normal;
+    // r at the iterate, and r . p when p is given (the line search's slope at the new point). At a
+    // contact r loses its inward part (p has none, so r.p loses that part's share).
     auto residual = [&](const Particle* p) {
-        return over_blocks(pool, [&](uint32_t b, uint32_t e) {
+        double rp = over_blocks(pool, [&](uint32_t b, uint32_t e) {
             return kernels::implicit_residual(c, iterate, target, start, p, r_.data(), b, e);
         });
+        for (uint32_t i : in_contact_) {
+            const glm::vec3 n = normal_[i];
+            const float inward = glm::dot(glm::vec3(r_[i]), n);
+            if (inward >= 0.0f) continue;
+            r_[i] -= Particle(inward * n, 0.0f);
+            if (p) rp -= double(inward) * double(glm::dot(n, glm::vec3(p[i])));
+        }
+        return rp;
     };
     auto move = [&](const std::vector<Particle>& direction, float step) {  // iterate += step direction
         over_blocks(pool, [&](uint32_t b, uint32_t e) {
@@ -332,9 +348,11 @@ ImplicitSolve::Dots ImplicitSolve::back_substitute(uint32_t first, uint32_t last
         y_[row] = v;
         for (uint32_t k = row_start_[row]; k < row_start_[row + 1]; ++k) y_[row_col_[k]] -= row_value_[k] * v;
         const uint32_t i = particle_[row];
-        z[i] = Particle(v, 0.0f);
-        dots.rz += double(glm::dot(v, glm::vec3(r[i])));
-        dots.z_r_prev += double(glm::dot(v, glm::vec3(r_prev[i])));
+        glm::vec3 zi = v;
+        if (normal_) zi -= std::min(0.0f, glm::dot(v, normal_[i])) * normal_[i];  // no step inwards at a contact
+        z[i] = Particle(zi, 0.0f);
+        dots.rz += double(glm::dot(zi, glm::vec3(r[i])));
+        dots.z_r_prev += double(glm::dot(zi, glm::vec3(r_prev[i])));
     }
     return dots;
 }

@@ -47,9 +47,15 @@ class ImplicitSolve {
     /// on entry, 0 on kinematic particles), from target and start (see kernels::implicit_residual),
     /// until converged (the preconditioned residual r.z below tolerance^2 times the energy scale of
     /// the substep's predicted motion) or max_iterations; returns the iterations taken. pool: the
-    /// threads to use, or null for the calling thread alone (same bits). Does not allocate.
+    /// threads to use, or null for the calling thread alone (same bits). contact_normal (or null):
+    /// per particle the outward normal of a frictionless collider it touched in the previous
+    /// substep, else 0. The solve does not move such a particle inwards (its residual and search
+    /// directions lose their inward part, Baraff and Witkin 1998 sec. 5.3): the springs then pull its
+    /// neighbours and slide it along the surface, instead of pressing it into the collider for the
+    /// collision pass to undo, which held a frictionless cloth on a box edge. Frictional contacts are
+    /// left to the collision pass, whose friction grows with that push. Does not allocate.
     uint32_t solve(const kernels::SubstepContext& c, const Particle* start, const Particle* target, Particle* iterate,
-                   uint32_t max_iterations, float tolerance, ThreadPool* pool);
+                   uint32_t max_iterations, float tolerance, ThreadPool* pool, const glm::vec3* contact_normal);
 
   private:
     static constexpr int kParts = 2;  ///< parts of the nested dissection; the separator follows
@@ -88,6 +94,8 @@ class ImplicitSolve {
     // Conjugate gradients, one record per particle: residual, the previous one, preconditioned
     // residual and direction.
     std::vector<Particle> r_, r_prev_, z_, p_;
+    std::vector<uint32_t> in_contact_;       ///< particles with a contact normal in this solve
+    const glm::vec3* normal_ = nullptr;  ///< this solve's contact normals, null if none
 };
 
 }  // namespace drape
