@@ -148,7 +148,8 @@ STRUCTS = [
                field("substeps", "u32",
                      "per step; 0 = automatic (MASS_SPRING: from the stability bound, see drape_estimate_stability; "
                      "PBD, XPBD: 16 \"small steps\"; IMPLICIT: 2, on GLES one per 1/120 s of the step; on CPU backends more "
-                     "while a collider near the cloth moves over half its size per substep). Automatic or given, "
+                     "while a collider near the cloth moves over half its size per substep, or with self-collision a "
+                     "particle over a quarter of the thickness). Automatic or given, "
                      "at most DRAPE_MAX_SUBSTEPS",
                      default=0, range=(0, "DRAPE_MAX_SUBSTEPS")),
                field("iterations", "u32", "solver iterations per substep (PBD, XPBD, IMPLICIT; IMPLICIT on the CPU: at most, "

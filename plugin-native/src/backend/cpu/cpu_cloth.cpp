@@ -110,6 +110,8 @@ void CpuCloth::begin(float dt) {
     last_h_ = dt / float(substeps_);
     if (params_.substeps == 0 && !ix_.colliders.empty())
         substeps_ = std::min(kMaxSubsteps, std::max(substeps_, collider_substeps(dt)));
+    if (params_.substeps == 0 && sc_.enabled)
+        substeps_ = std::min(kMaxSubsteps, std::max(substeps_, self_collision_substeps(dt)));
     h_ = dt / float(substeps_);
     iterations_ = iterations_for();
     implicit_iterations_ = 0;

@@ -44,6 +44,10 @@ private:
     /// Substeps the automatic budget needs for the colliders that move near the cloth this step
     /// (kColliderTravelPerSubstep; 1 if none, cpu_collide.cpp).
     uint32_t collider_substeps(float dt) const;
+    /// Substeps the automatic budget needs with self-collision on: no particle moves more than
+    /// kSelfMoveLimit thicknesses per substep relative to the cloth's mean motion, at its last
+    /// substep's velocity (cpu_collide.cpp).
+    uint32_t self_collision_substeps(float dt) const;
     struct VerifyPartial {
         bool finite;
         float max_strain_all, max_strain, sum_sq;

@@ -85,6 +85,17 @@ uint32_t CpuCloth::collider_substeps(float dt) const {
     return needed;
 }
 
+uint32_t CpuCloth::self_collision_substeps(float dt) const {
+    const uint32_t n = topo_.particle_count;
+    glm::vec3 mean(0.0f);
+    for (uint32_t i = 0; i < n; ++i) mean += glm::vec3(d_[i]);
+    mean /= float(n);
+    float fastest = 0;
+    for (uint32_t i = 0; i < n; ++i) fastest = std::max(fastest, glm::length(glm::vec3(d_[i]) - mean));
+    const float s = std::ceil(fastest * (dt / h_prev_) / (kSelfMoveLimit * sc_.thickness));
+    return s < 1 ? 1u : s >= float(kMaxSubsteps) ? kMaxSubsteps : uint32_t(s);
+}
+
 void CpuCloth::collide(uint32_t sub) {
     ProfileScope scope(profile_, DRAPE_STAGE_COLLIDE);
     const uint32_t substeps = substeps_;
