@@ -5,6 +5,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libglm-dev libgtest-dev googletest
   libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
+  mesa-vulkan-drivers  # lavapipe: the Vulkan device under Mesa's zink GL driver (zink test preset)
   glslang-tools libstb-dev python3-matplotlib
   imagemagick  # demo GIFs
   clang-14 libclang-rt-14-dev g++-aarch64-linux-gnu qemu-user  # sanitizers, libFuzzer, arm64 under qemu

@@ -3,8 +3,9 @@
 set -euo pipefail
 bash .ci/build.sh release
 ctest --preset release
-# The GLES tests again on Mesa's softpipe driver (llvmpipe above).
+# The GLES tests again on Mesa's softpipe and zink (on lavapipe) drivers (llvmpipe above).
 ctest --preset softpipe
+ctest --preset zink
 
 # C#: package checks, Unity compile checks, NUnit tests of Drape.Core.
 bash .ci/dotnet-test.sh
