@@ -3,7 +3,7 @@
 // files into --out; tests/bench/plot.py turns them into PNGs and REPORT.md.
 //
 //   drape_bench [--quick] [--out DIR] [--only a,b,...] [--threads N]
-//   parts: throughput, threads, precision, rest, stiff, stress, vibration, stages
+//   parts: throughput, threads, precision, rest, stiff, fall, stress, vibration, stages
 //
 // Timings are wall-clock medians over repeated steps of one run on a shared machine; they are
 // numbers to compare within one run, never assertions.
@@ -1154,6 +1154,103 @@ void run_stiff(const Options& o) {
     g_progress.finish();
 }
 
+/// Motion: the sheet of the stress part (horizontal, pinned at two corners of one edge, 0.2 kg)
+/// falling from flat for 0.5 s at 60 Hz with the default damping, at the library's stiffness
+/// times 1, 10 and 50 (structural 2e3, 2e4, 1e5 N/m), 17^2 (quick: 9^2). Rest-state scenes cannot
+/// see how fast a cloth moves; this one can. Reference: MASS_SPRING (the same springs, dashpots and
+/// tethers, integrated explicitly within its stability bound) stepped in `calls` library steps per
+/// frame, `calls` doubled until no step is refused; its own error is the distance to the same run
+/// at half the substep. Each setting's error: the largest distance of any vertex from the
+/// reference's at any frame, over the cloth size, and how far its centre of mass fell against
+/// the reference's (1 = as far).
+void run_fall(const Options& o) {
+    Csv csv(o.out + "/fall.csv",
+            "size,stiffness_scale,structural_stiffness,model,setting,is_default,ms_median,max_vertex_error,fall_ratio,"
+            "ref_error,ok");
+    const uint32_t n = o.quick ? 9 : 17;
+    const int frames = 30;
+    const float dt = 1.0f / 60;
+    const drape_params def = library_default();
+    const std::vector<Config> settings = {{def.model, def.substeps, def.iterations},
+                                          {DRAPE_MODEL_IMPLICIT, 1, 1},
+                                          {DRAPE_MODEL_IMPLICIT, 2, 16},
+                                          {DRAPE_MODEL_XPBD, 0, 0},
+                                          {DRAPE_MODEL_XPBD, 64, 4}};
+    const double scales[] = {1, 10, 50};
+    GridSpec gs;
+    gs.cols = gs.rows = n;
+    gs.vertical = false;
+    gs.threads = 1;
+    struct Run {
+        std::vector<std::vector<float>> x;  ///< positions at the start and after each frame
+        std::vector<double> ms;
+        bool ok = true;
+        uint32_t substeps = 0;  ///< per library step, the last one's
+    };
+    auto run = [&](const drape_params& p, int calls) {
+        auto sim = make_grid(gs);
+        sim->set_params(p);
+        Run r;
+        r.x.push_back(sim->positions());
+        for (int f = 0; f < frames; ++f) {
+            double ms = 0;
+            for (int c = 0; c < calls; ++c) {
+                drape_status st;
+                ms += timed_step(*sim, dt / float(calls), &st);
+                if (st != DRAPE_OK) r.ok = false;
+            }
+            r.ms.push_back(ms);
+            r.x.push_back(sim->positions());
+        }
+        r.substeps = sim->stats().substeps;
+        return r;
+    };
+    auto max_distance = [](const Run& a, const Run& b) {
+        double d = 0;
+        for (size_t f = 0; f < a.x.size(); ++f)
+            for (size_t i = 0; i < a.x[f].size(); i += 3) {
+                const double dx = a.x[f][i] - b.x[f][i], dy = a.x[f][i + 1] - b.x[f][i + 1],
+                             dz = a.x[f][i + 2] - b.x[f][i + 2];
+                d = std::max(d, std::sqrt(dx * dx + dy * dy + dz * dz));
+            }
+        return d;
+    };
+    auto mean_y = [](const std::vector<float>& x) {
+        double y = 0;
+        for (size_t i = 1; i < x.size(); i += 3) y += x[i];
+        return y / double(x.size() / 3);
+    };
+    g_progress.start("fall", int(std::size(scales) * (settings.size() + 1)));
+    for (double scale : scales) {
+        const drape_params ref_p = params_for(DRAPE_MODEL_MASS_SPRING, scale);
+        int calls = 4;
+        Run ref = run(ref_p, calls);
+        while (!ref.ok && calls < 1024) ref = run(ref_p, calls *= 2);
+        drape_params fine = ref_p;  // the reference at half its substep
+        fine.substeps = 2 * ref.substeps;
+        const bool more_calls = fine.substeps > DRAPE_MAX_SUBSTEPS;
+        if (more_calls) fine.substeps = ref.substeps;
+        const double ref_error = max_distance(ref, run(fine, more_calls ? 2 * calls : calls)) / gs.width;
+        const double y0 = mean_y(ref.x.front()), ref_fall = y0 - mean_y(ref.x.back());
+        g_progress.tick(fmt("x%g reference", scale) + fmt(" (%g calls per frame,", calls) +
+                        fmt(" %g substeps each)", ref.substeps));
+        for (const Config& c : settings) {
+            drape_params p = params_for(c.model, scale);
+            p.substeps = c.substeps;
+            p.iterations = c.iterations;
+            const Run r = run(p, 1);
+            const bool is_default = &c == &settings[0];
+            const std::string setting = c.substeps == 0 ? "auto" : fmt("%g", c.substeps) + "x" + fmt("%g", c.iterations);
+            const double err = max_distance(r, ref) / gs.width, fall = (y0 - mean_y(r.x.back())) / ref_fall;
+            csv.row("%u,%g,%g,%s,%s,%d,%.4f,%.4g,%.4g,%.3g,%d", n, scale, double(p.stiffness[0]), model_name(c.model),
+                    setting.c_str(), int(is_default), median(r.ms), err, fall, ref_error, int(r.ok));
+            g_progress.tick(fmt("x%g ", scale) + model_name(c.model) + " " + setting + fmt(" error %.3g", err) +
+                            fmt(" fall x%.2f", fall));
+        }
+    }
+    g_progress.finish();
+}
+
 // ---------------------------------------------------------------------------------------------
 // 3. Stress (accuracy.md S1 S2 S3 S5 S7 S10)
 
@@ -1740,7 +1837,7 @@ int main(int argc, char** argv) {
         } else {
             std::fprintf(stderr,
                          "usage: drape_bench [--quick] [--out DIR] [--threads N] [--only "
-                         "throughput,threads,precision,rest,stiff,stress,vibration,stages]\n");
+                         "throughput,threads,precision,rest,stiff,fall,stress,vibration,stages]\n");
             return a == "--help" || a == "-h" ? 0 : 2;
         }
     }
@@ -1758,6 +1855,7 @@ int main(int argc, char** argv) {
     if (o.wants("precision")) run_precision(o);
     if (o.wants("rest")) run_rest(o);
     if (o.wants("stiff")) run_stiff(o);
+    if (o.wants("fall")) run_fall(o);
     if (o.wants("stress")) run_stress(o);
     if (o.wants("vibration")) run_vibration(o);
     if (o.wants("stages")) run_stages(o);

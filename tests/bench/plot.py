@@ -557,6 +557,49 @@ def stiff_under_load(out, rows, meta, lines):
     lines.append("")
 
 
+def fall(out, rows, meta, lines):
+    """The sheet falling from flat against a fine-step MASS_SPRING reference: fall.png (error
+    against cost, one panel per stiffness) and a REPORT section."""
+    if not rows:
+        return
+    scales = sorted({num(r["stiffness_scale"]) for r in rows})
+    fig, axes = plt.subplots(1, len(scales), figsize=(4 * len(scales), 3.8), squeeze=False)
+    for ax, scale in zip(axes[0], scales):
+        for r in (r for r in rows if num(r["stiffness_scale"]) == scale):
+            default = r["is_default"] == "1"
+            ax.scatter([num(r["ms_median"])], [num(r["max_vertex_error"])], color=COLOURS[r["model"]],
+                       marker="*" if default else "o", s=160 if default else 24,
+                       edgecolor="black" if default else "none")
+            ax.annotate(f"{r['model']} {r['setting']}", (num(r["ms_median"]), num(r["max_vertex_error"])), fontsize=6)
+        log_axes(ax)
+        k = next(num(r["structural_stiffness"]) for r in rows if num(r["stiffness_scale"]) == scale)
+        ax.set_title(f"structural {k:g} N/m", fontsize=9)
+        ax.set_xlabel("ms per 60 Hz step (one thread)")
+    axes[0][0].set_ylabel("max vertex distance from reference / size")
+    fig.suptitle("Falling sheet, 0.5 s from flat (the default is a star)", fontsize=9)
+    fig.text(0.01, 0.01, machine_note(meta), fontsize=6)
+    fig.tight_layout(rect=(0, 0.04, 1, 1))
+    fig.savefig(os.path.join(out, "fall.png"), dpi=110)
+    plt.close(fig)
+
+    size = rows[0]["size"]
+    lines.append("## Motion: a falling sheet\n")
+    lines.append(f"Sheet {size}^2 (1 m, 0.2 kg), horizontal, pinned at the two corners of one edge, falling from flat "
+                 "for 0.5 s at 60 Hz with the default damping and tethers, at the library's stiffness x1, x10, x50. "
+                 "Reference: MASS_SPRING (the same springs) within its stability bound; its own error (against itself at "
+                 "half the substep) is the ref column. Error: the largest distance of any vertex from the reference's "
+                 "over all frames, over the cloth size; fall: how far the centre of mass fell against the reference's "
+                 "(1 = as far; below 1 the cloth falls in slow motion). CSV: fall.csv; plot: fall.png.\n")
+    lines.append("| stiffness | setting | error | fall | ms | ref |")
+    lines.append("|---|---|---|---|---|---|")
+    for r in rows:
+        lines.append(f"| {num(r['structural_stiffness']):g} N/m | {r['model']} {r['setting']}"
+                     + (" (default)" if r["is_default"] == "1" else "")
+                     + f" | {num(r['max_vertex_error']):.3g} | {num(r['fall_ratio']):.2f} | {num(r['ms_median']):.3f}"
+                     + f" | {num(r['ref_error']):.1e} |" + ("" if r["ok"] == "1" else " unstable"))
+    lines.append("")
+
+
 def curtain_vs_jolt(out, rows, meta, lines):
     """The curtain comparison re-measured, beside Jolt 5.5's figures: curtain_vs_jolt.csv,
     equal_error.csv, curtain_vs_jolt.png and a REPORT section."""
@@ -840,7 +883,7 @@ def main():
              f"Run time {num(meta.get('seconds', 'nan')):.0f} s. All numbers come from this one run; timings are "
              "medians of repeated steps on a machine shared with other engineers' builds, so they move between runs "
              "(compare ratios within a run). Plots: fig6_step_time.png, threads.png, precision_*.png, curtain_vs_jolt.png, "
-             "stiff_under_load.png, stability_map.png, fig7_vibration.png.\n"]
+             "stiff_under_load.png, fall.png, stability_map.png, fig7_vibration.png.\n"]
     sections = [
         lambda: fig6(out, read(out, "throughput.csv"), meta, lines),
         lambda: threads(out, read(out, "threads.csv"), meta, lines),
@@ -848,6 +891,7 @@ def main():
         lambda: rest(out, read(out, "rest.csv"), meta, lines),
         lambda: curtain_vs_jolt(out, read(out, "rest.csv"), meta, lines),
         lambda: stiff_under_load(out, read(out, "stiff_under_load.csv"), meta, lines),
+        lambda: fall(out, read(out, "fall.csv"), meta, lines),
         lambda: stress(out, read(out, "stress.csv"), read(out, "s10_iterations.csv"), read(out, "s8_colliders.csv"),
                        meta, lines),
         lambda: vibration(out, read(out, "vibration.csv"), meta, lines),

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs drape_bench and turns its CSV into plots and REPORT.md (tests/bench/README.md).
-#   bash tests/bench/run.sh [--quick] [--out DIR] [--only throughput,threads,precision,rest,stiff,stress,vibration,stages]
+#   bash tests/bench/run.sh [--quick] [--out DIR] [--only throughput,threads,precision,rest,stiff,fall,stress,vibration,stages]
 # Needs a release build (bash .ci/build.sh release); DRAPE_BENCH overrides the binary's path.
 set -euo pipefail
 out=bench-out
