@@ -617,7 +617,8 @@ private:
                     case 0: {
                         uint32_t vert = 0;
                         s = drape_cloth_grab(c, &v, id, p, maybe_bad(0, 500), rarely() ? nullptr : &vert);
-                        if (s == DRAPE_OK && k >= 0) CHECK(vert == UINT32_MAX || vert < cloths_[k].vertices);
+                        if (s == DRAPE_OK && k >= 0)
+                            CHECK(vert == UINT32_MAX || vert == DRAPE_GRAB_ON_GPU || vert < cloths_[k].vertices);
                         break;
                     }
                     case 1: s = drape_cloth_grab_move(c, &v, id, p); break;

@@ -59,7 +59,7 @@ std::ostream& operator<<(std::ostream& os, const GlCalls& c) {
               << " attribute set-ups, " << c.uploads << " uploads, " << c.reads << " reads)";
 }
 
-enum class Extra { None, Tethers, CollidersAndTethers, DragAndTethers };
+enum class Extra { None, Tethers, CollidersAndTethers, DragAndTethers, GrabAndTethers };
 
 struct BudgetCase {
     const char* name;
@@ -112,6 +112,13 @@ TEST_P(GlesCallBudget, SteadyFramesReadNothingUploadNothingAndCostAFixedNumberOf
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     ASSERT_DRAPE_OK(drape_cloth_set_output_buffer(c, vbo, &layout));
 
+    // Orthographic identity view: sim (x, y) in [-1, 1] on a 200 x 200 px screen.
+    drape_view ortho{};
+    ortho.struct_size = sizeof ortho;
+    for (int k = 0; k < 16; k += 5) ortho.world[k] = ortho.view[k] = ortho.projection[k] = 1;
+    ortho.viewport[0] = ortho.viewport[1] = 200;
+    bool finger_moves = true;
+    float finger_x = 120.0f;
     auto frame = [&](int f) {
         if (bc.extra == Extra::CollidersAndTethers) {
             // A sphere under the sheet, moving every frame, pushed every frame as Unity does.
@@ -129,21 +136,28 @@ TEST_P(GlesCallBudget, SteadyFramesReadNothingUploadNothingAndCostAFixedNumberOf
         if (bc.extra == Extra::DragAndTethers) {
             // A finger dragging across the sheet every frame (orthographic identity view): the
             // drag is evaluated on the GPU from uniforms, nothing read back or uploaded.
-            drape_view view{};
-            view.struct_size = sizeof view;
-            for (int k = 0; k < 16; k += 5) view.world[k] = view.view[k] = view.projection[k] = 1;
-            view.viewport[0] = view.viewport[1] = 200;
             drape_touch t{};
             ASSERT_DRAPE_OK(drape_touch_default(&t));
             t.position[0] = 100.0f + float(f);
             t.position[1] = 150.0f;
             t.motion[0] = 1.0f;
-            ASSERT_DRAPE_OK(drape_cloth_drag(c, &view, &t, 1));
+            ASSERT_DRAPE_OK(drape_cloth_drag(c, &ortho, &t, 1));
+        }
+        if (bc.extra == Extra::GrabAndTethers) {
+            // A finger holding a vertex near the sheet's middle (picked on the GPU in the first
+            // frame), moving every frame: the grab pass's finger uniform, nothing read or uploaded.
+            if (finger_moves) finger_x = 120.0f + float(f);
+            const float at[2] = {finger_x, 200.0f};
+            uint32_t got = 0;
+            if (f == 0) ASSERT_DRAPE_OK(drape_cloth_grab(c, &ortho, 1, at, 10.0f, &got));
+            else ASSERT_DRAPE_OK(drape_cloth_grab_move(c, &ortho, 1, at));
         }
         ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
     };
-    const int warm_up = 3, counted = 5;
-    for (int f = 0; f < warm_up; ++f) frame(f);  // programs, vertex arrays, first uploads
+    // Programs, vertex arrays, first uploads. The grab pass swaps two buffers' roles once more per
+    // step: their roles cycle over more frames before every pass configuration has its vertex array.
+    const int warm_up = bc.extra == Extra::GrabAndTethers ? 4 : 3, counted = 5;
+    for (int f = 0; f < warm_up; ++f) frame(f);
     const GlCalls start = GlCalls::now();
     for (int f = warm_up; f < warm_up + counted; ++f) frame(f);
     const GlCalls per_frame = GlCalls::now().per_frame_since(start, counted);
@@ -154,6 +168,7 @@ TEST_P(GlesCallBudget, SteadyFramesReadNothingUploadNothingAndCostAFixedNumberOf
     if (bc.extra == Extra::CollidersAndTethers) ++passes_per_substep;   // collisions
     uint64_t passes = st.substeps * passes_per_substep + 1;             // + the output pass
     if (bc.extra == Extra::DragAndTethers) ++passes;                    // drag: first substep
+    if (bc.extra == Extra::GrabAndTethers) ++passes;                    // the grab pass
     std::cout << "[ gl calls ] " << bc.name << ", " << cols << "x" << rows << ", " << st.substeps << " substeps, "
               << passes << " passes per frame: " << per_frame << "\n";
 
@@ -165,6 +180,18 @@ TEST_P(GlesCallBudget, SteadyFramesReadNothingUploadNothingAndCostAFixedNumberOf
     EXPECT_LE(per_frame.refreshes, 2 * passes);
     EXPECT_LE(per_frame.total - per_frame.uniforms, kCallsPerPass * passes + kCallsPerFrame);
     EXPECT_LE(per_frame.uniforms, kUniformsPerPass * passes);
+    if (bc.extra == Extra::GrabAndTethers) {
+        // The same frames with the finger still: the moving finger costs its one uniform update
+        // per frame, and nothing else.
+        finger_moves = false;
+        const GlCalls still_start = GlCalls::now();
+        for (int f = warm_up + counted; f < warm_up + 2 * counted; ++f) frame(f);
+        const GlCalls still = GlCalls::now().per_frame_since(still_start, counted);
+        std::cout << "[ gl calls ] " << bc.name << ", finger still: " << still << "\n";
+        EXPECT_EQ(per_frame.uniforms, still.uniforms + 1);
+        EXPECT_EQ(per_frame.total, still.total + 1);
+        EXPECT_EQ(still.uploads + still.reads, 0u);
+    }
     // Still simulating (parity with the CPU is test_gles.cpp's): the sheet's middle fell.
     const std::vector<float> x = positions(c);
     EXPECT_LT(x[size_t(rows / 2 * cols + cols / 2) * 3 + 1], 1.0f) << "the sheet fell under gravity";
@@ -184,6 +211,9 @@ INSTANTIATE_TEST_SUITE_P(
                       BudgetCase{"Xpbd_Colliders", DRAPE_MODEL_XPBD, Extra::CollidersAndTethers},
                       BudgetCase{"MassSpring_Drag", DRAPE_MODEL_MASS_SPRING, Extra::DragAndTethers},
                       BudgetCase{"Xpbd_Drag", DRAPE_MODEL_XPBD, Extra::DragAndTethers},
+                      BudgetCase{"MassSpring_Grab", DRAPE_MODEL_MASS_SPRING, Extra::GrabAndTethers},
+                      BudgetCase{"Xpbd_Grab", DRAPE_MODEL_XPBD, Extra::GrabAndTethers},
+                      BudgetCase{"Implicit_Grab", DRAPE_MODEL_IMPLICIT, Extra::GrabAndTethers},
                       BudgetCase{"Implicit", DRAPE_MODEL_IMPLICIT, Extra::None},
                       BudgetCase{"Implicit_Tethers", DRAPE_MODEL_IMPLICIT, Extra::Tethers},
                       BudgetCase{"Implicit_Colliders", DRAPE_MODEL_IMPLICIT, Extra::CollidersAndTethers}),

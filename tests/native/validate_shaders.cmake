@@ -54,6 +54,9 @@ foreach(slots 12 32)
     check(sim.vert.glsl vert -DDRAPE_PASS_IMPLICIT -DDRAPE_SLOTS=${slots} -DDRAPE_RECORD=3 ${commit})
   endforeach()
 endforeach()
+# Grab variants (gles_grab.cpp): the pick and the grab pass.
+check(grab.vert.glsl vert -DDRAPE_PASS_PICK -DDRAPE_GRABS=16)
+check(grab.vert.glsl vert -DDRAPE_PASS_GRAB -DDRAPE_GRABS=16)
 # Output variants: position only, normal only, both with copied-through bytes.
 check(output.vert.glsl vert -DDRAPE_WRITE_POSITION)
 check(output.vert.glsl vert -DDRAPE_WRITE_NORMAL)

@@ -266,7 +266,8 @@ def probe_c():
            "#define ENUM(e) {\"enum:\" #e, (int64_t)(e)}", "",
            "static const probe_entry k_entries[] = {",
            "    {\"DRAPE_ABI_VERSION\", DRAPE_ABI_VERSION},",
-           "    {\"DRAPE_MAX_COLLIDERS\", DRAPE_MAX_COLLIDERS},"]
+           "    {\"DRAPE_MAX_COLLIDERS\", DRAPE_MAX_COLLIDERS},",
+           "    {\"DRAPE_GRAB_ON_GPU\", DRAPE_GRAB_ON_GPU},"]
     for s in abi.STRUCTS:
         out.append("")
         out.append("    STRUCT(%s)," % s["c"])

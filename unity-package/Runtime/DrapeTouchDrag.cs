@@ -16,7 +16,7 @@ namespace Drape
         /// Gaussian falloff in screen space (drape_cloth_drag). Works on every backend.</summary>
         Drag = 0,
         /// <summary>Pick-and-hold: the vertex nearest the finger is held under it as a moving pin
-        /// until release (drape_cloth_grab). CPU backends only.</summary>
+        /// until release (drape_cloth_grab). Every backend (a GPU cloth picks on the GPU).</summary>
         Grab = 1,
     }
 
@@ -66,7 +66,8 @@ namespace Drape
         private bool _wasActive;
         private bool _holding;
 
-        /// <summary>The vertex held in Grab mode, or <see cref="NativeCloth.NoVertex"/>.</summary>
+        /// <summary>The vertex held in Grab mode, or <see cref="NativeCloth.NoVertex"/>; on a GPU cloth
+        /// <see cref="NativeCloth.GrabOnGpu"/> while the finger is down (the vertex is picked on the GPU).</summary>
         public uint HeldVertex { get; private set; } = NativeCloth.NoVertex;
 
         private void OnEnable() => _cloth = GetComponent<DrapeCloth>();
@@ -102,12 +103,12 @@ namespace Drape
             float scale = ScaleWithScreenDensity ? DensityScale(Screen.dpi) : 1f;
             try
             {
-                if (Mode == DrapeTouchMode.Grab && _cloth.ActiveBackend != Drape.Core.Backend.Gles)
+                if (Mode == DrapeTouchMode.Grab)
                 {
                     if (!_wasActive)
                     {
                         HeldVertex = cloth.Grab(view, GrabId, new Float2(point.x, point.y), PickRadius * scale);
-                        _holding = HeldVertex != NativeCloth.NoVertex;
+                        _holding = HeldVertex != NativeCloth.NoVertex; // GrabOnGpu: held until released
                     }
                     else if (_holding && point != _lastPoint)
                     {

@@ -495,9 +495,19 @@ DRAPE_API drape_status drape_cloth_get_self_collision(const drape_cloth* cloth, 
  * positions that step starts from (a CPU cloth: at the positions of the call; the same unless
  * positions change in between); it takes at most 4 drape_cloth_drag calls with 16 touches in all
  * between two steps (more: DRAPE_ERROR_INVALID_ARGUMENT). The owner transform runs on every backend (a GLES cloth moves its GPU state
- * by one transform-feedback pass per changed call, before its next step). Grabs are CPU-only: they
- * return DRAPE_ERROR_BACKEND_UNAVAILABLE for GLES cloths. Limits: 16 touches per drag call, 16 grabs
- * held at once, pick radius in (0, 1e4] px, screen positions within 1e6 px. */
+ * by one transform-feedback pass per changed call, before its next step). Grabs run on every
+ * backend. A GLES cloth reads nothing back for them: its next step picks the vertex on the GPU (at
+ * the positions that step starts from) and holds it there, so drape_cloth_grab cannot say which
+ * vertex it got (DRAPE_GRAB_ON_GPU) nor whether one was within the radius: the touch id holds its
+ * grab until released either way (drape_cloth_grab_move is accepted and moves nothing if none was
+ * found); moves and releases apply at the next step; a lost GL context drops the picks (the ids
+ * hold nothing until grabbed again); tethers stay anchored to the pins (a CPU cloth anchors them
+ * to the grabbed vertex too). Limits: 16 touches per drag call, 16 grabs held at once, pick radius
+ * in (0, 1e4] px, screen positions within 1e6 px. */
+
+/** drape_cloth_grab's *out_vertex on a GLES cloth: the vertex is picked on the GPU at the next
+ *  step, and not known here (UINT32_MAX - 1; UINT32_MAX: no vertex within the radius, CPU). */
+#define DRAPE_GRAB_ON_GPU 0xFFFFFFFEu
 
 /* GENERATED BEGIN drape_view */
 /* C# twin: Drape.Core.View. Matrices are 4x4, column-major (glm, OpenGL and Unity's Matrix4x4 memory order:
@@ -540,11 +550,13 @@ DRAPE_API drape_status drape_cloth_drag(drape_cloth* cloth, const drape_view* vi
 /** Pick-and-hold: grabs the free vertex nearest (on screen) to `position` (px) within
  *  `pick_radius` px and holds it as a moving pin at its current depth. `touch_id` names the grab
  *  (at most 16 at once; grabbing with a live id releases the old one first). *out_vertex = the
- *  caller vertex, or UINT32_MAX if none was within the radius (still DRAPE_OK). */
+ *  caller vertex, or UINT32_MAX if none was within the radius (still DRAPE_OK); on a GLES cloth
+ *  DRAPE_GRAB_ON_GPU (see above). */
 DRAPE_API drape_status drape_cloth_grab(drape_cloth* cloth, const drape_view* view, uint32_t touch_id,
                                         const float position[2], float pick_radius, uint32_t* out_vertex);
 /** Moves a grabbed vertex under the finger at `position` (px), at the depth it was grabbed at;
- *  the move is spread over the next step like a pin move. INVALID_ARGUMENT if touch_id holds nothing. */
+ *  the move is spread over the next step like a pin move. INVALID_ARGUMENT if touch_id holds nothing
+ *  (a GLES cloth: if touch_id was not grabbed). */
 DRAPE_API drape_status drape_cloth_grab_move(drape_cloth* cloth, const drape_view* view, uint32_t touch_id,
                                              const float position[2]);
 /** Releases a grab (the vertex gets its inverse mass back and keeps its velocity). Unknown id: OK. */

@@ -98,10 +98,11 @@ public:
     virtual Result drag(const drape_view& view, std::vector<drape_touch> touches);
     /// The drag offsets of these touches from the CPU copy's positions, for the next step.
     void drag_cpu_copy(const drape_view& view, const drape_touch* touches, uint32_t count);
-    /// Caller vertex grabbed, or UINT32_MAX if no free vertex lies within pick_radius px.
-    uint32_t grab(const drape_view& view, uint32_t touch_id, const float position[2], float pick_radius);
-    bool grab_move(const drape_view& view, uint32_t touch_id, const float position[2]);
-    void grab_release(uint32_t touch_id);
+    /// Caller vertex grabbed, or UINT32_MAX if no free vertex lies within pick_radius px: here
+    /// from the CPU copy; a backend may pick where its state lives (then DRAPE_GRAB_ON_GPU).
+    virtual uint32_t grab(const drape_view& view, uint32_t touch_id, const float position[2], float pick_radius);
+    virtual bool grab_move(const drape_view& view, uint32_t touch_id, const float position[2]);
+    virtual void grab_release(uint32_t touch_id);
     void set_owner(const drape_owner& owner);
     uint64_t collide_tests() const { return ix_.collide_tests; }
     void set_self_collision(bool enabled, float thickness, float friction);

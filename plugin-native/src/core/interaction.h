@@ -53,7 +53,7 @@ struct RigidMove {
 
 struct Grab {
     uint32_t touch_id;
-    uint32_t particle;
+    uint32_t particle;  ///< the grabbed particle (GLES: the grab's slot; the particle is on the GPU)
     double ndc_z;  ///< depth the vertex was grabbed at
 };
 

@@ -136,6 +136,7 @@ namespace Drape.Tests
             Assert.That((long)SizeOf.SelfCollisionDesc, Is.EqualTo(C["drape_self_collision_desc"]));
             Assert.That((long)SizeOf.StabilityEstimate, Is.EqualTo(C["drape_stability"]));
             Assert.That((long)NativeCloth.MaxColliders, Is.EqualTo(C["DRAPE_MAX_COLLIDERS"]));
+            Assert.That((long)NativeCloth.GrabOnGpu, Is.EqualTo(C["DRAPE_GRAB_ON_GPU"]));
         }
 
         [Test]

@@ -19,6 +19,7 @@ typedef struct probe_entry {
 static const probe_entry k_entries[] = {
     {"DRAPE_ABI_VERSION", DRAPE_ABI_VERSION},
     {"DRAPE_MAX_COLLIDERS", DRAPE_MAX_COLLIDERS},
+    {"DRAPE_GRAB_ON_GPU", DRAPE_GRAB_ON_GPU},
 
     STRUCT(drape_world_desc),
     FIELD(drape_world_desc, struct_size),

@@ -213,6 +213,11 @@ namespace Drape.Core
         /// <summary>Returned by <see cref="Grab"/> when no vertex was within the pick radius (UINT32_MAX).</summary>
         public const uint NoVertex = uint.MaxValue;
 
+        /// <summary>Returned by <see cref="Grab"/> on a GPU (GLES) cloth (DRAPE_GRAB_ON_GPU): the vertex is
+        /// picked on the GPU at the next step and is not known here. The touch id holds the grab until
+        /// released, whether or not a vertex was within the radius (<see cref="GrabMove"/> then moves nothing).</summary>
+        public const uint GrabOnGpu = 0xFFFFFFFEu;
+
         /// <summary>Replaces the cloth's colliders (call once per frame with the current transforms;
         /// empty removes them all). StructSize of each element is set here. A collider keeps its Id
         /// from call to call so that its motion is swept across the next step. Allocates nothing.</summary>
@@ -284,8 +289,9 @@ namespace Drape.Core
 
         /// <summary>Pick-and-hold: grabs the free vertex nearest on screen to <paramref name="position"/>
         /// (px) within <paramref name="pickRadius"/> px and holds it at its depth under the finger.
-        /// Returns the vertex, or <see cref="NoVertex"/> if none was within the radius. At most 16
-        /// grabs at once; grabbing with a live <paramref name="touchId"/> releases the old one first.</summary>
+        /// Returns the vertex, or <see cref="NoVertex"/> if none was within the radius (a GPU cloth:
+        /// <see cref="GrabOnGpu"/>). At most 16 grabs at once; grabbing with a live
+        /// <paramref name="touchId"/> releases the old one first.</summary>
         public uint Grab(in View view, uint touchId, Float2 position, float pickRadius)
         {
             View v = view;

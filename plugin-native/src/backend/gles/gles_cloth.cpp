@@ -79,12 +79,14 @@ constexpr int kNbrUnit = 4, kInfoUnit = 5, kTrisUnit = 6, kSetupUnit = 7;
 constexpr struct {
     const char* name;
     GLint unit;
-} kSamplers[] = {{"u_nbr", kNbrUnit}, {"u_info", kInfoUnit}, {"u_tris", kTrisUnit}};
+} kSamplers[] = {{"u_nbr", kNbrUnit}, {"u_info", kInfoUnit}, {"u_tris", kTrisUnit}, {"u_pick_target", kSetupUnit}};
+static_assert(GlesCloth::kPickUnit == kSetupUnit, "the grab pass binds the pick target on the setup unit");
 // Inputs of a pass beyond x and aux (GlesCloth::vertex_array); bits above the two buffer indices.
 enum PassInputs : uint32_t {
     kIterateRecords = 1u << 4,   // x holds displacement-iterate records (+ XPBD lambdas)
     kKinematicInputs = 1u << 5,  // a_kstart, a_ktarget
     kTetherInputs = 1u << 6,     // a_tether_anchor, a_tether_length
+    kGrabTargets = 1u << 7,      // a_ktarget from gl_.grab_targets (a grab is held), not gl_.targets
 };
 
 std::atomic<bool> g_render_device{false};
@@ -115,8 +117,11 @@ void delete_now(GlObjects& o) {
     glDeleteTextures(4, o.textures);
     GLuint tex[3] = {o.nbr_tex, o.info_tex, o.tri_tex};
     glDeleteTextures(3, tex);
-    GLuint bufs[7] = {o.kstart, o.targets, o.vertex_to_particle, o.scratch, o.tethers, o.uniforms, o.staging};
-    glDeleteBuffers(7, bufs);
+    GLuint bufs[8] = {o.kstart, o.targets, o.vertex_to_particle, o.scratch, o.tethers, o.uniforms, o.staging, o.grab_targets};
+    glDeleteBuffers(8, bufs);
+    glDeleteTextures(1, &o.pick_tex);
+    glDeleteRenderbuffers(1, &o.pick_depth);
+    if (o.pick_fbo) glDeleteFramebuffers(1, &o.pick_fbo);
     o.vaos.push_back(o.out_vao);
     glDeleteVertexArrays(GLsizei(o.vaos.size()), o.vaos.data());
     if (o.queries[0]) glDeleteQueries(3, o.queries);
@@ -257,10 +262,11 @@ Result check_block_layout(GLuint program, GLuint block) {
 }
 
 Result link(const std::string& vs_source, const char* name, const std::vector<std::string>& varyings,
-            GLenum buffer_mode, const std::vector<std::pair<GLuint, const char*>>& attribs, GLuint* out) {
+            GLenum buffer_mode, const std::vector<std::pair<GLuint, const char*>>& attribs, GLuint* out,
+            const char* fs_source = shaders::discard_frag, const char* fs_name = "discard.frag.glsl") {
     GLuint vs = 0, fs = 0;
     if (Result r = compile(GL_VERTEX_SHADER, vs_source, name, &vs); !r.ok()) return r;
-    if (Result r = compile(GL_FRAGMENT_SHADER, shaders::discard_frag, "discard.frag.glsl", &fs); !r.ok()) {
+    if (Result r = compile(GL_FRAGMENT_SHADER, fs_source, fs_name, &fs); !r.ok()) {
         glDeleteShader(vs);
         return r;
     }
@@ -594,6 +600,8 @@ Result GlesCloth::sync_gpu() {
         for (uint32_t i = 0; i < n; ++i) {
             texels[4 * i] = topo_.nbr.count[i];
             texels[4 * i + 1] = active_count_[i];
+            const float w = pinned_[i] ? 0.0f : base_inverse_mass_[i];  // what a grab's release restores
+            std::memcpy(&texels[4 * i + 3], &w, 4);
         }
         for (uint32_t p : topo_.triangles) ++texels[4 * p + 2];  // incident triangles
         if (texels != info_uploaded_) {
@@ -697,7 +705,7 @@ GLuint GlesCloth::vertex_array(int x, int aux, uint32_t inputs) {
         glBindBuffer(GL_ARRAY_BUFFER, gl_.kstart);
         glEnableVertexAttribArray(aKStart);
         glVertexAttribPointer(aKStart, 3, GL_FLOAT, GL_FALSE, kState, nullptr);
-        glBindBuffer(GL_ARRAY_BUFFER, gl_.targets);
+        glBindBuffer(GL_ARRAY_BUFFER, inputs & kGrabTargets ? gl_.grab_targets : gl_.targets);
         glEnableVertexAttribArray(aKTarget);
         glVertexAttribPointer(aKTarget, 3, GL_FLOAT, GL_FALSE, 12, nullptr);
     }
@@ -841,7 +849,7 @@ const std::string& GlesCloth::variant_defines(int pass) const {
     }
     if (pass == kPredict && predict_has_dashpot()) d += "#define DRAPE_DASHPOT 1\n";
     if (xpbd) d += "#define DRAPE_XPBD 1\n";
-    if (pass < kConstraint && !kinematic_.empty()) d += "#define DRAPE_KINEMATIC 1\n";
+    if (pass < kConstraint && kinematic_on_gpu()) d += "#define DRAPE_KINEMATIC 1\n";
     define("DRAPE_SLOTS", long(topo_.nbr.slots));
     define("DRAPE_RECORD", long(record_vec4()));
     define("DRAPE_LAMBDA_VEC4", long(xpbd ? record_vec4() - 1 : 1));
@@ -971,7 +979,9 @@ void GlesCloth::run_pass(Program& p, int x, int aux, int out, int out2, bool con
     use_program(p, x, aux);
     if (p.u[uSubstep] >= 0) glUniform4fv(p.u[uSubstep], 1, &sub.x);
     if (p.u[uChebyshev] >= 0) glUniform2f(p.u[uChebyshev], chebyshev.x, chebyshev.y);
-    const uint32_t inputs = constraint ? kIterateRecords : kinematic_.empty() ? 0u : kKinematicInputs;
+    const uint32_t inputs = constraint           ? kIterateRecords
+                            : !kinematic_on_gpu() ? 0u
+                                                  : kKinematicInputs | (grabs_on_gpu_ ? kGrabTargets : 0u);
     draw(vertex_array(x, aux, inputs), out, out2);
 }
 
@@ -1115,6 +1125,7 @@ Result GlesCloth::gpu_step(float dt) {
             return {DRAPE_ERROR_BUFFER_TOO_SMALL, "output GL buffer holds " + std::to_string(size) +
                                                       " bytes, the layout needs " + std::to_string(need)};
     }
+    if (Result r = prepare_grabs(); !r.ok()) return r;  // before the variants: a grab makes the step kinematic
     const drape_model model = drape_model(params_.model);
     const int first = model == DRAPE_MODEL_MASS_SPRING ? kMassSpring : kPredict;
     Program *p_first = nullptr, *p_constraint = nullptr, *p_commit = nullptr, *p_tether = nullptr;
@@ -1175,7 +1186,8 @@ Result GlesCloth::gpu_step(float dt) {
         cpu_h_prev_ = h_prev_;
         cpu_fresh_ = fresh_;
     }
-    if (!kinematic_.empty()) {
+    run_grabs();  // may hold, release or pick particles: before their start is taken
+    if (kinematic_on_gpu()) {
         // Kinematic particles move from where they are now (GPU copy, no readback).
         glBindBuffer(GL_COPY_READ_BUFFER, gl_.buffers[g_[0]]);
         glBindBuffer(GL_COPY_WRITE_BUFFER, gl_.kstart);
@@ -1483,6 +1495,21 @@ Result GlesCloth::stats(drape_stats* out) {
     return {};
 }
 
+Result GlesCloth::link_grab_program(const std::string& defines, bool pick, GLuint* out) {
+    // The pick draws into the pick target (pick.frag.glsl); the grab pass feeds back the position
+    // record and the pin target (separate buffers). Inputs at the state passes' locations.
+    const std::vector<std::string> varyings = pick ? std::vector<std::string>{} : std::vector<std::string>{"v_x", "v_target"};
+    Result r = link(with_defines(shaders::grab_vert, defines), "grab.vert.glsl", varyings, GL_SEPARATE_ATTRIBS,
+                    {{aX, "a_x"}, {aKTarget, "a_ktarget"}}, out, pick ? shaders::pick_frag : shaders::discard_frag,
+                    pick ? "pick.frag.glsl" : "discard.frag.glsl");
+    if (!r.ok()) return r;
+    used_program_ = 0;  // link() made it current
+    gl_.programs.push_back(*out);
+    return {};
+}
+
+GLuint GlesCloth::grab_vertex_array() { return vertex_array(g_[0], g_[1], kKinematicInputs); }
+
 uint32_t GlesCloth::substeps_for(float dt) const {
     if (params_.model != DRAPE_MODEL_IMPLICIT || params_.substeps > 0) return Cloth::substeps_for(dt);
     const float s = std::ceil(dt / kMaxAutoSubstepImplicitGles - 1e-3f);  // 1/60 s: 2, not 3 by rounding
@@ -1495,13 +1522,9 @@ uint32_t GlesCloth::iterations_for() const {
 }
 
 Result GlesCloth::supports(Feature feature) const {
-    auto cpu_only = [](const char* what) {
-        return Result{DRAPE_ERROR_BACKEND_UNAVAILABLE,
-                      std::string(what) + " is not implemented on the GLES backend yet (CPU backends only)"};
-    };
     switch (feature) {
     case Feature::ImplicitModel: return {};  // block Jacobi + Chebyshev passes (sim.vert.glsl)
-    case Feature::Grab: return cpu_only("grab");
+    case Feature::Grab: return {};  // picked and held on the GPU (gles_grab.cpp)
     case Feature::Owner: return {};  // moved on the GPU (move_gpu_state)
     case Feature::Sleep: return {};  // checked on the GPU (issue_still, poll_still)
     case Feature::SelfCollision:
@@ -1538,6 +1561,7 @@ void GlesCloth::drop_gl() {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!gl_ready_) return;
     pull();  // keep the latest state on the CPU; re-uploaded on the next device
+    drop_gpu_grabs();
     delete_now(gl_);
     still_count_ = 0;
     programs_.clear();
@@ -1557,6 +1581,7 @@ void GlesCloth::forget_gl() {
     }
     gpu_newer_ = false;
     gpu_moves_.clear();  // made on the CPU copy, which the cloth resumes from
+    drop_gpu_grabs();
     still_count_ = 0;    // its queries went with the context
     gl_ = GlObjects{};  // names of a dead context: never deleted (the next context may reuse them)
     programs_.clear();

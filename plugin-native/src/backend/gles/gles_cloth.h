@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "core/cloth.h"
+#include "core/drag.h"  // kMaxGrabs
 
 namespace drape::gles {
 
@@ -66,6 +67,9 @@ struct GlObjects {
     GLuint out_vao = 0;   ///< the output pass's inputs
     GLuint fbo = 0, rbo = 0;  ///< own 1x1 target (headless passes, the sleep check's points)
     GLuint queries[3] = {};   ///< the sleep check's occlusion queries (GlesCloth::kStillQueries)
+    /// Grabs (gles_grab.cpp): pick target (RGBA32UI texture + depth renderbuffer, one texel per
+    /// slot) and the pin targets the passes read while a grab is held.
+    GLuint pick_fbo = 0, pick_tex = 0, pick_depth = 0, grab_targets = 0;
     std::vector<GLuint> programs;
     std::vector<GLuint> vaos;  ///< per pass configuration (GlesCloth::vertex_array)
     void* context = nullptr;  ///< EGLContext they were made in
@@ -104,6 +108,16 @@ public:
     /// kMaxDragCalls calls and kMaxTouches touches between two steps.
     Result drag(const drape_view& view, std::vector<drape_touch> touches) override;
     static constexpr uint32_t kMaxDragCalls = 4;
+    /// Pick-and-hold on the GPU (gles_grab.cpp), no readback: the call records the pick (returns
+    /// DRAPE_GRAB_ON_GPU), the next step finds the vertex in a pass and holds it (a pass at the
+    /// start of each step while held); moves and releases apply at the next step too. The touch id
+    /// holds its slot until released, whether or not the pick found a vertex.
+    uint32_t grab(const drape_view& view, uint32_t touch_id, const float position[2], float pick_radius) override;
+    bool grab_move(const drape_view& view, uint32_t touch_id, const float position[2]) override;
+    void grab_release(uint32_t touch_id) override;
+    /// Texture unit the grab pass samples the pick target on (gles_cloth.cpp: kSetupUnit, free
+    /// while the passes run).
+    static constexpr int kPickUnit = 7;
     /// Sleep checks in flight at most (steps whose result has not arrived yet); a step finding
     /// them all in flight issues none.
     static constexpr int kStillQueries = 3;
@@ -182,6 +196,34 @@ private:
     /// This step's still check (Cloth::interaction_end_step on the GPU): an occlusion query over
     /// points drawn only for particles that moved more than threshold * h over the last substep.
     void issue_still(Program& p, float dt);
+    /// Pin targets and inverse masses on the GPU: kinematic particles, or a grab held on the GPU.
+    bool kinematic_on_gpu() const { return !kinematic_.empty() || grabs_on_gpu_; }
+    // ---- grabs (gles_grab.cpp) ----
+    /// One grab slot as the GL work sees it (edits and steps, under mutex_).
+    struct GpuGrab {
+        bool pick_pending = false;     ///< pick at the next step (pick_view, pick_at, radius)
+        bool held = false;             ///< the pick texel of `serial` is held (if it found a vertex)
+        bool release_pending = false;  ///< the next step releases what pick `serial` held
+        bool moved = false;            ///< a finger was given since the pick (view, at)
+        uint32_t serial = 0;           ///< pick number (0: none yet); the pick texel records it
+        drape_view pick_view{}, view{};
+        glm::vec2 pick_at{0.0f}, at{0.0f};
+        float radius = 0;
+    };
+    /// Before the step's programs are chosen: whether a grab is held on the GPU this step
+    /// (grabs_on_gpu_), and the grab programs compiled (or the pick target made) if so.
+    Result prepare_grabs();
+    /// After begin_passes, before the step's kinematic start is taken: releases and holds (the
+    /// grab pass), then the pending picks and a second grab pass that holds what they found.
+    void run_grabs();
+    /// One grab pass (cur -> spare, targets -> gl_.grab_targets); releases the pending releases
+    /// if `release`.
+    void grab_pass(bool release);
+    /// Context or device gone: the picks went with it; inverse masses back to the CPU's.
+    void drop_gpu_grabs();
+    // Hooks into the passes' set-up for gles_grab.cpp (gles_cloth.cpp).
+    Result link_grab_program(const std::string& defines, bool pick, GLuint* out);
+    GLuint grab_vertex_array();  ///< cur, disp and the CPU's pin targets (kinematic inputs)
     /// The own 1x1 framebuffer, made on first use.
     GLuint own_framebuffer();
     /// kernels::tether: reads state buffers x and d, writes them to out_x and out_d.
@@ -247,6 +289,13 @@ private:
     StillQuery still_[kStillQueries];  // ring over gl_.queries: still_first_, still_count_ in flight
     int still_first_ = 0, still_count_ = 0;
     std::vector<RigidMove> gpu_moves_;  // owner moves the GPU state has not had yet (in order)
+    GpuGrab gpu_grabs_[kMaxGrabs];      // per slot; Grab::particle on this backend is the slot
+    bool grabs_on_gpu_ = false;         // this step holds a grab on the GPU: targets from gl_.grab_targets
+    uint32_t grab_serial_ = 0;          // picks so far
+    GLuint grab_program_ = 0, pick_program_ = 0;
+    GLint grab_u_ = -1, pick_u_ = -1;   // locations of u_grab, u_pick
+    bool pick_target_cleared_ = false;  // the pick target's colour holds serial 0 or real picks
+    std::vector<glm::vec4> grab_uniforms_, grab_uniforms_set_;  // u_grab to set, and as set
     // Drag of the calls since the last step, as the shader's u_drag_views / u_touches (records in
     // shaders/layout.h); consumed by the next step. The counts as recorded by drag() on
     // the calling thread (reset when a step is recorded) bound them.
