@@ -6,6 +6,8 @@
 #include <cassert>
 #include <cmath>
 #include <glm/common.hpp>
+#include <glm/exponential.hpp>
+#include <glm/geometric.hpp>
 #include <numeric>
 
 namespace drape {
@@ -108,7 +110,8 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     const int m = int(particle_.size());
     for (int r = 0; r < m; ++r) row[particle_[r]] = r;
 
-    // A in that order, factored as it stands (no further ordering).
+    // L's pattern from Eigen's factor of A in that order (no further ordering), kept by columns
+    // for factor_rows and by rows for the substitutions; the values come from factor_rows.
     std::vector<Eigen::Triplet<double>> entries;
     entries.reserve(size_t(m) * (nb.slots + 1));
     for (uint32_t i : free) {
@@ -121,27 +124,42 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     SparseMatrix a(m, m);
     a.setFromTriplets(entries.begin(), entries.end());
     Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>> llt(a);
-
-    // L in float, by rows (sorted by column), from Eigen's columns (diagonal first).
     const SparseMatrix& l = llt.matrixL().nestedExpression();
-    inv_diag_.resize(m);
+    col_start_.assign(l.outerIndexPtr(), l.outerIndexPtr() + m + 1);
+    col_row_.assign(l.innerIndexPtr(), l.innerIndexPtr() + l.nonZeros());
     std::vector<uint32_t> row_count(m + 1, 0);
-    for (int j = 0; j < m; ++j) {
-        const int b = l.outerIndexPtr()[j], e = l.outerIndexPtr()[j + 1];
-        inv_diag_[j] = float(1.0 / l.valuePtr()[b]);
-        for (int k = b + 1; k < e; ++k) ++row_count[l.innerIndexPtr()[k] + 1];
-    }
+    for (int j = 0; j < m; ++j)
+        for (int k = l.outerIndexPtr()[j] + 1; k < l.outerIndexPtr()[j + 1]; ++k)
+            ++row_count[l.innerIndexPtr()[k] + 1];
     row_start_.resize(m + 1);
     std::partial_sum(row_count.begin(), row_count.end(), row_start_.begin());
     std::vector<uint32_t> fill(row_start_.begin(), row_start_.end() - 1);
     row_col_.resize(row_start_[m]);
-    row_value_.resize(row_start_[m]);
     for (int j = 0; j < m; ++j)
-        for (int k = l.outerIndexPtr()[j] + 1; k < l.outerIndexPtr()[j + 1]; ++k) {
-            const uint32_t at = fill[l.innerIndexPtr()[k]]++;
-            row_col_[at] = uint32_t(j);
-            row_value_[at] = float(l.valuePtr()[k]);
+        for (int k = l.outerIndexPtr()[j] + 1; k < l.outerIndexPtr()[j + 1]; ++k)
+            row_col_[fill[l.innerIndexPtr()[k]]++] = uint32_t(j);
+    row_value_.resize(row_start_[m]);
+    inv_diag_.resize(m);
+    col_value_.resize(col_row_.size());
+    col_fill_.resize(m);
+    work_.assign(m, glm::dvec3(0.0));
+    row_of_.assign(row.begin(), row.end());
+    spring_scale_ = INFINITY;
+    for (uint32_t i : free)
+        for (uint32_t s = 0; s < nb.count[i]; ++s) {
+            const uint8_t g = nb.group[size_t(i) * nb.slots + s];
+            if (g < DRAPE_GROUP_COUNT && params.stiffness[g] > 0)
+                spring_scale_ = std::min(spring_scale_, nb.rest[size_t(i) * nb.slots + s]);
         }
+    factored_at_.assign(x, x + n);
+    refactor_at_.resize(n);
+    row_value_next_.resize(row_value_.size());
+    inv_diag_next_.resize(m);
+    h_ = h;
+    update_budget_ = ~uint64_t(0);
+    next_row_ = factor_rows(topo, params, factored_at_.data(), 0, false, row_value_.data(), inv_diag_.data());
+    update_budget_ = std::max<uint64_t>(1, updates_ / kRefactorSteps);
+    tension_ = false;
     // The dissection holds: a part's rows only reach its own columns.
     for (int p = 0; p < kParts; ++p)
         for (uint32_t r = begin_[p]; r < begin_[p + 1]; ++r)
@@ -159,7 +177,92 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     for (std::vector<Particle>* v : {&r_, &r_prev_, &z_, &p_}) v->assign(n, Particle(0.0f));
     in_contact_.reserve(n);
     block_sum_.assign((n + kBlock - 1) / kBlock, 0.0);
-    h_ = h;
+}
+
+void ImplicitSolve::start_refactor(const Particle* x) {
+    std::copy(x, x + refactor_at_.size(), refactor_at_.begin());
+    next_row_ = 0;
+}
+
+void ImplicitSolve::continue_refactor(const Topology& topo, const drape_params& params) {
+    next_row_ = factor_rows(topo, params, refactor_at_.data(), next_row_, true, row_value_next_.data(),
+                            inv_diag_next_.data());
+    if (refactoring()) return;
+    row_value_.swap(row_value_next_);
+    inv_diag_.swap(inv_diag_next_);
+    factored_at_.swap(refactor_at_);
+    tension_ = true;
+}
+
+uint32_t ImplicitSolve::factor_rows(const Topology& topo, const drape_params& params, const Particle* at,
+                                    uint32_t first, bool tension, glm::vec3* row_value, glm::vec3* inv_diag) {
+    // Up-looking Cholesky (Davis 2006, "Direct methods for sparse linear systems", 4.7), the three
+    // axes at once: row k of L solves L[0:k, 0:k] l = A[0:k, k], whose pattern (row_col_, ascending,
+    // which is topological: every update goes to a later column) and the columns' patterns
+    // (col_row_) are known, so nothing is allocated. A is symmetric positive definite whatever the
+    // weights (M/h^2 > 0, weights >= 0), so every pivot is positive. Rows from first until
+    // update_budget_ updates are done or L is; returns the next row.
+    const NeighbourTable& nb = topo.nbr;
+    const double kd_h = double(params.damping) / h_;
+    const double inv_h2 = 1.0 / (double(h_) * h_);
+    const uint32_t m = uint32_t(particle_.size());
+    if (first == 0) {
+        std::fill(col_fill_.begin(), col_fill_.end(), 0u);
+        updates_ = 0;
+    }
+    uint64_t done = 0;
+    uint32_t k = first;
+    for (; k < m && done < update_budget_; ++k) {
+        const uint32_t i = particle_[k];
+        // Row k of A: scatter its columns below k into work_, sum its diagonal.
+        glm::dvec3 d(inv_h2 / double(at[i].w));
+        for (uint32_t s = 0; s < nb.count[i]; ++s) {
+            const size_t slot = size_t(i) * nb.slots + s;
+            const uint8_t g = nb.group[slot];
+            if (g >= DRAPE_GROUP_COUNT || !(params.stiffness[g] > 0)) continue;
+            const uint32_t j = nb.index[slot];
+            const glm::dvec3 w = spring_weight(double(params.stiffness[g]), kd_h, nb.rest[slot],
+                                               glm::vec3(at[i]) - glm::vec3(at[j]), tension);
+            d += w;
+            if (row_of_[j] >= 0 && uint32_t(row_of_[j]) < k) work_[row_of_[j]] -= w;
+        }
+        for (uint32_t e = row_start_[k]; e < row_start_[k + 1]; ++e) {
+            const uint32_t c = row_col_[e];
+            const glm::dvec3 lkc = work_[c] / col_value_[col_start_[c]];
+            work_[c] = glm::dvec3(0.0);
+            const uint32_t from = col_start_[c] + 1, filled = from + col_fill_[c]++;
+            for (uint32_t q = from; q < filled; ++q) work_[col_row_[q]] -= col_value_[q] * lkc;
+            done += filled - from + 1;
+            assert(col_row_[filled] == k);
+            col_value_[filled] = lkc;
+            row_value[e] = glm::vec3(lkc);
+            d -= lkc * lkc;
+        }
+        assert(d.x > 0 && d.y > 0 && d.z > 0);
+        const glm::dvec3 lkk = glm::sqrt(d);
+        col_value_[col_start_[k]] = lkk;
+        inv_diag[k] = glm::vec3(1.0 / lkk);
+    }
+    updates_ += done;
+    return k;
+}
+
+glm::dvec3 ImplicitSolve::spring_weight(double k, double kd_h, float rest, const glm::vec3& xij,
+                                        bool tension) {
+    if (!tension) return glm::dvec3(k + kd_h);
+    const glm::dvec3 v(xij);
+    const double len = std::sqrt(glm::dot(v, v));
+    if (!(len > 0)) return glm::dvec3(k + kd_h);
+    const glm::dvec3 n2 = (v / len) * (v / len);
+    const double t = k * std::max(0.0, 1.0 - double(rest) / len);
+    return (k + kd_h) * n2 + t * (1.0 - n2);
+}
+
+float ImplicitSolve::moved_since_factor(const Particle* x) const {
+    float moved = 0;
+    for (size_t i = 0; i < factored_at_.size(); ++i)
+        moved = std::max(moved, glm::length(glm::vec3(x[i]) - glm::vec3(factored_at_[i])));
+    return moved;
 }
 
 template <class Fn>
@@ -245,11 +348,12 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         const Dots dots = precondition(r_.data(), r_prev_.data(), first ? p_.data() : z_.data(), pool);
         ++it;
         if (!(dots.rz > 0)) break;  // r = 0: at the minimum
-        if (max_iterations == 1 && h_ < c.h * (1.0f + kImplicitRefactor)) {
-            // A single iteration needs no step length: A bounds the (clamped) Hessian, so the plain
-            // step d += A^-1 r lowers Phi, and it solves the linear part (rigid motion, stretch
-            // along the load) at once. Not when A was built for a longer substep (a fast collider
-            // added substeps): its mass term is then smaller than the Hessian's.
+        if (max_iterations == 1 && !tension_ && h_ < c.h * (1.0f + kImplicitRefactor)) {
+            // A single iteration needs no step length: the constant A bounds the (clamped) Hessian,
+            // so the plain step d += A^-1 r lowers Phi, and it solves the linear part (rigid motion,
+            // stretch along the load) at once. Not when A was built for a longer substep (a fast
+            // collider added substeps): its mass term is then smaller than the Hessian's; nor with
+            // the tension weights, whose diagonal blocks do not bound it.
             move(p_, 1.0f);
             break;
         }

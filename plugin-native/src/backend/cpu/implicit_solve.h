@@ -7,8 +7,12 @@
 // cloth) in one iteration but charges a taut sheet's transverse sag the full k of each spring
 // where the true stiffness is k times the strain, so that mode crept (a 17^2 sheet at 1e5 N/m was
 // 7.9 % off after 10 s); conjugate directions with the step length from the spring Hessian
-// (kernels::implicit_curvature) take it in a few iterations. The fixed point is r = 0, the
-// exact equilibrium, whatever the preconditioner, so A is refactored only when it drifts far.
+// (kernels::implicit_curvature) take it in a few iterations, but a few iterations barely touch that
+// sag's higher modes and the sheet's transverse waves, which kept the fall's energy and swung the
+// sag for good. So a cloth that has come to rest elsewhere than its factor was built is refactored
+// there with its springs' tension (start_refactor): per axis the diagonal of each spring's Hessian
+// block.
+// The fixed point is r = 0, the exact equilibrium, whatever the preconditioner.
 //
 // The factor's rows are ordered by a one-level nested dissection: two parts that share no spring,
 // each in its own minimum-degree (AMD) order, then the separator between them. L is then block
@@ -40,6 +44,21 @@ class ImplicitSolve {
 
     /// Builds and factors A for substep h; particles with x[i].w == 0 are kinematic. Allocates.
     void factor(const Topology& topo, const drape_params& params, const Particle* x, float h);
+    /// Refactors A (same substep, masses, stiffness and pattern) at the configuration x, spread over
+    /// the next kRefactorSteps calls of continue_refactor (a 129^2 factor is several steps' work), the
+    /// current factor serving meanwhile; allocates nothing. Each spring's weight per axis is then the
+    /// diagonal of its Hessian block there, (k + kd/h) n_a^2 + T (1 - n_a^2), T = k max(0, 1 - L/l)
+    /// (factor's: k + kd/h on every axis, the constant A above). A taut sheet's sag and transverse
+    /// waves are resisted by T alone: the constant A charges them k, so a few iterations barely
+    /// touched them, and they kept the energy of the cloth's fall, swinging its sag by 0.1-1 % at
+    /// rest for good; with T they settle.
+    void start_refactor(const Particle* x);
+    void continue_refactor(const Topology& topo, const drape_params& params);
+    bool refactoring() const { return next_row_ < particle_.size(); }
+    /// Largest distance of a particle from where it was at the last factor, m.
+    float moved_since_factor(const Particle* x) const;
+    /// Shortest rest length of the springs in A, m (the cloth's length scale).
+    float spring_scale() const { return spring_scale_; }
     /// Substep the factor was built for, s (0: none yet).
     float h() const { return h_; }
 
@@ -76,15 +95,33 @@ class ImplicitSolve {
     void separator(const Particle* r, const Particle* r_prev, Particle* z);
     Dots back_substitute(uint32_t first, uint32_t last, const Particle* r, const Particle* r_prev, Particle* z);
 
+    static glm::dvec3 spring_weight(double k, double kd_h, float rest, const glm::vec3& xij, bool tension);
+    /// Rows of L (into row_value, inv_diag) from first at the configuration at; see continue_refactor.
+    uint32_t factor_rows(const Topology& topo, const drape_params& params, const Particle* at, uint32_t first,
+                         bool tension, glm::vec3* row_value, glm::vec3* inv_diag);
+    static constexpr uint64_t kRefactorSteps = 16;  ///< calls a refactor is spread over
+
     float h_ = 0;
+    bool tension_ = false;  ///< the factor has the tension weights (start_refactor)
+    float spring_scale_ = 0;
     std::vector<float> key_;           ///< stiffness, damping and inverse masses it was built from
     uint32_t begin_[kParts + 2] = {};  ///< factor rows of part p: [begin_[p], begin_[p + 1]); separator last
     std::vector<uint32_t> particle_;   ///< particle of each factor row
-    std::vector<float> inv_diag_;      ///< 1 / L_jj
+    std::vector<glm::vec3> inv_diag_;  ///< 1 / L_jj, per axis
     // Strictly lower part of L by rows: the forward substitution gathers along a row, the back
     // substitution scatters along it (a part's rows reach only its own columns, so parts run at once).
     std::vector<uint32_t> row_start_, row_col_;
-    std::vector<float> row_value_;
+    std::vector<glm::vec3> row_value_;  ///< per axis
+    // L by columns in double for factor_rows: the rows of column j's entries (its diagonal first) at
+    // [col_start_[j], col_start_[j + 1]), their values, how many of them it has computed, and
+    // a row of A being solved; each particle's factor row (-1: kinematic); where the particles were.
+    std::vector<uint32_t> col_start_, col_row_, col_fill_;
+    std::vector<glm::dvec3> col_value_, work_;
+    std::vector<int> row_of_;
+    std::vector<Particle> factored_at_, refactor_at_;
+    std::vector<glm::vec3> row_value_next_, inv_diag_next_;  ///< the refactor in progress
+    uint32_t next_row_ = 0;                      ///< its next row (all: none in progress)
+    uint64_t updates_ = 0, update_budget_ = 0;  ///< a factor's inner updates, and a call's share
     /// Per separator row, where its entries in each part's columns end (they are sorted by column).
     std::vector<uint32_t> sep_split_;
     std::vector<glm::vec3> y_;        ///< scratch, one per factor row
