@@ -91,9 +91,15 @@ class ImplicitSolve {
     };
     /// z = A^-1 r on the free particles (z stays 0 on kinematic ones), with r.z and z.r_prev.
     Dots precondition(const Particle* r, const Particle* r_prev, Particle* z, ThreadPool* pool);
-    void forward_part(int p, const Particle* r);
-    void separator(const Particle* r, const Particle* r_prev, Particle* z);
-    Dots back_substitute(uint32_t first, uint32_t last, const Particle* r, const Particle* r_prev, Particle* z);
+    // The substitutions with L's values (float: the constant factor's, one for all axes; glm::vec3:
+    // the tension factor's).
+    template <class V>
+    void forward_part(int p, const Particle* r, const V* value, const V* inv_diag);
+    template <class V>
+    void separator(const Particle* r, const Particle* r_prev, Particle* z, const V* value, const V* inv_diag);
+    template <class V>
+    Dots back_substitute(uint32_t first, uint32_t last, const Particle* r, const Particle* r_prev, Particle* z,
+                         const V* value, const V* inv_diag);
 
     static glm::dvec3 spring_weight(double k, double kd_h, float rest, const glm::vec3& xij, bool tension);
     /// Rows of L (into row_value, inv_diag) from first at the configuration at; see continue_refactor.
@@ -112,6 +118,7 @@ class ImplicitSolve {
     // substitution scatters along it (a part's rows reach only its own columns, so parts run at once).
     std::vector<uint32_t> row_start_, row_col_;
     std::vector<glm::vec3> row_value_;  ///< per axis
+    std::vector<float> row_value1_, inv_diag1_;  ///< the constant factor's (its axes are equal)
     // L by columns in double for factor_rows: the rows of column j's entries (its diagonal first) at
     // [col_start_[j], col_start_[j + 1]), their values, how many of them it has computed, and
     // a row of A being solved; each particle's factor row (-1: kinematic); where the particles were.
