@@ -598,19 +598,6 @@ def fall(out, rows, meta, lines):
                      + f" | {num(r['max_vertex_error']):.3g} | {num(r['fall_ratio']):.2f} | {num(r['ms_median']):.3f}"
                      + f" | {num(r['ref_error']):.1e} |" + ("" if r["ok"] == "1" else " unstable"))
     lines.append("")
-    for scale in scales:
-        rs = [r for r in rows if num(r["stiffness_scale"]) == scale]
-        d = next((r for r in rs if r["is_default"] == "1"), None)
-        if not d:
-            continue
-        better = [r for r in rs if num(r["ms_median"]) <= num(d["ms_median"])
-                  and num(r["max_vertex_error"]) < num(d["max_vertex_error"])]
-        where = ("on the error-cost front of these settings" if not better else "behind "
-                 + ", ".join(f"{r['model']} {r['setting']} (error {num(r['max_vertex_error']):.3g}, "
-                             f"{num(r['ms_median']):.3f} ms)" for r in better) + ", cheaper and closer")
-        lines.append(f"- Stiffness x{scale:g}: the default ({d['model']} {d['setting']}) falls "
-                     f"{num(d['fall_ratio']):.2f} as far as the reference, error {num(d['max_vertex_error']):.3g}; {where}.")
-    lines.append("")
 
 
 def curtain_vs_jolt(out, rows, meta, lines):

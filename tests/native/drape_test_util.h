@@ -3,7 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -95,13 +94,6 @@ inline std::vector<float> positions(const drape_cloth* c) {
     drape_vertex_layout l{sizeof l, 12, 0, -1};
     EXPECT_EQ(drape_cloth_read(c, &l, out.data(), out.size() * sizeof(float)), DRAPE_OK) << drape_last_error();
     return out;
-}
-
-/// Largest difference between two equally long arrays (positions: m).
-inline float max_abs_diff(const std::vector<float>& a, const std::vector<float>& b) {
-    float m = 0;
-    for (size_t k = 0; k < a.size(); ++k) m = std::max(m, std::fabs(a[k] - b[k]));
-    return m;
 }
 
 inline drape_params params_of(const drape_cloth* c) {

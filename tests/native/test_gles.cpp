@@ -31,6 +31,12 @@ void pin_corners(drape_cloth* c, uint32_t cols, float dx = 0) {
     EXPECT_DRAPE_OK(drape_cloth_set_pins(c, pins, 2));
 }
 
+float max_abs_diff(const std::vector<float>& a, const std::vector<float>& b) {
+    float m = 0;
+    for (size_t k = 0; k < a.size(); ++k) m = std::max(m, std::fabs(a[k] - b[k]));
+    return m;
+}
+
 }  // namespace
 
 TEST_F(Gles, AvailableOnlyWithAContext) {

@@ -59,7 +59,7 @@ std::ostream& operator<<(std::ostream& os, const GlCalls& c) {
               << " attribute set-ups, " << c.uploads << " uploads, " << c.reads << " reads)";
 }
 
-enum class Extra { None, Tethers, CollidersAndTethers, DragAndTethers, GrabAndTethers };
+enum class Extra { None, Tethers, CollidersAndTethers, DragAndTethers, GrabAndTethers, SelfCollision, SelfCollisionOff };
 
 struct BudgetCase {
     const char* name;
@@ -81,9 +81,13 @@ constexpr uint64_t kCallsPerFrame = 100;
 // parameters live in a uniform block, uploaded only when they change.
 constexpr uint64_t kUniformsPerPass = 3;
 
-TEST_P(GlesCallBudget, SteadyFramesReadNothingUploadNothingAndCostAFixedNumberOfCallsPerPass) {
-    const BudgetCase bc = GetParam();
-    const uint32_t cols = 32, rows = 32;
+// Self-collision: a draw per hash layer (gles_self_collide.h kSelfLayers) and the collide pass.
+constexpr uint64_t kSelfHashLayers = 8;
+constexpr uint32_t cols = 32, rows = 32;
+
+/// The GL calls per frame of the case's cloth over its counted frames (after warm-up frames), with a
+/// grab the same frames with the finger still, its stats and positions after them.
+void count_frames(const BudgetCase& bc, GlCalls* per_frame, GlCalls* still, drape_stats* st, std::vector<float>* x) {
     WorldPtr w = make_world(1);
     drape_grid_desc g = grid_desc(cols, rows, 1.0f, 1.0f);
     g.origin[1] = 1.0f;
@@ -93,7 +97,8 @@ TEST_P(GlesCallBudget, SteadyFramesReadNothingUploadNothingAndCostAFixedNumberOf
     ASSERT_DRAPE_OK(drape_params_default(&p));
     p.model = bc.model;
     p.iterations = 4;
-    p.max_stretch = bc.extra == Extra::None ? 0.0f : 0.1f;
+    const bool tethers = bc.extra != Extra::None && bc.extra != Extra::SelfCollision && bc.extra != Extra::SelfCollisionOff;
+    p.max_stretch = tethers ? 0.1f : 0.0f;
     if (bc.model == DRAPE_MODEL_PBD) {
         p.stiffness[0] = p.stiffness[1] = 1.0f;  // PBD stiffness is a fraction
         p.stiffness[2] = 0.2f;
@@ -111,6 +116,18 @@ TEST_P(GlesCallBudget, SteadyFramesReadNothingUploadNothingAndCostAFixedNumberOf
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n) * 32, nullptr, GL_DYNAMIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     ASSERT_DRAPE_OK(drape_cloth_set_output_buffer(c, vbo, &layout));
+    if (bc.extra == Extra::SelfCollision || bc.extra == Extra::SelfCollisionOff) {
+        drape_self_collision_desc sc{};
+        sc.struct_size = sizeof sc;
+        sc.enabled = 1;
+        sc.thickness = 0.03f;
+        ASSERT_DRAPE_OK(drape_cloth_set_self_collision(c, &sc));
+        if (bc.extra == Extra::SelfCollisionOff) {
+            ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));  // its GL objects made
+            sc.enabled = 0;
+            ASSERT_DRAPE_OK(drape_cloth_set_self_collision(c, &sc));
+        }
+    }
 
     // Orthographic identity view: sim (x, y) in [-1, 1] on a 200 x 200 px screen.
     drape_view ortho{};
@@ -160,11 +177,30 @@ TEST_P(GlesCallBudget, SteadyFramesReadNothingUploadNothingAndCostAFixedNumberOf
     for (int f = 0; f < warm_up; ++f) frame(f);
     const GlCalls start = GlCalls::now();
     for (int f = warm_up; f < warm_up + counted; ++f) frame(f);
-    const GlCalls per_frame = GlCalls::now().per_frame_since(start, counted);
+    *per_frame = GlCalls::now().per_frame_since(start, counted);
+    if (bc.extra == Extra::GrabAndTethers) {
+        // The same frames with the finger still (compared by the test).
+        finger_moves = false;
+        const GlCalls still_start = GlCalls::now();
+        for (int f = warm_up + counted; f < warm_up + 2 * counted; ++f) frame(f);
+        *still = GlCalls::now().per_frame_since(still_start, counted);
+    }
+    *st = stats_of(c);  // after counting: reading stats reads the GPU state back
+    *x = positions(c);
+    glDeleteBuffers(1, &vbo);
+}
 
-    const drape_stats st = stats_of(c);  // after counting: reading stats reads the GPU state back
+TEST_P(GlesCallBudget, SteadyFramesReadNothingUploadNothingAndCostAFixedNumberOfCallsPerPass) {
+    const BudgetCase bc = GetParam();
+    GlCalls per_frame, still;
+    drape_stats st{};
+    std::vector<float> x;
+    count_frames(bc, &per_frame, &still, &st, &x);
+    if (HasFatalFailure()) return;
     uint64_t passes_per_substep = bc.model == DRAPE_MODEL_MASS_SPRING ? 1 : 1 + st.iterations;
-    if (bc.extra != Extra::None) ++passes_per_substep;                  // tethers
+    if (bc.extra != Extra::None && bc.extra != Extra::SelfCollision && bc.extra != Extra::SelfCollisionOff)
+        ++passes_per_substep;                                           // tethers
+    if (bc.extra == Extra::SelfCollision) passes_per_substep += kSelfHashLayers + 1;  // hash layers, collide
     if (bc.extra == Extra::CollidersAndTethers) ++passes_per_substep;   // collisions
     uint64_t passes = st.substeps * passes_per_substep + 1;             // + the output pass
     if (bc.extra == Extra::DragAndTethers) ++passes;                    // drag: first substep
@@ -183,19 +219,22 @@ TEST_P(GlesCallBudget, SteadyFramesReadNothingUploadNothingAndCostAFixedNumberOf
     if (bc.extra == Extra::GrabAndTethers) {
         // The same frames with the finger still: the moving finger costs its one uniform update
         // per frame, and nothing else.
-        finger_moves = false;
-        const GlCalls still_start = GlCalls::now();
-        for (int f = warm_up + counted; f < warm_up + 2 * counted; ++f) frame(f);
-        const GlCalls still = GlCalls::now().per_frame_since(still_start, counted);
         std::cout << "[ gl calls ] " << bc.name << ", finger still: " << still << "\n";
         EXPECT_EQ(per_frame.uniforms, still.uniforms + 1);
         EXPECT_EQ(per_frame.total, still.total + 1);
         EXPECT_EQ(still.uploads + still.reads, 0u);
     }
     // Still simulating (parity with the CPU is test_gles.cpp's): the sheet's middle fell.
-    const std::vector<float> x = positions(c);
     EXPECT_LT(x[size_t(rows / 2 * cols + cols / 2) * 3 + 1], 1.0f) << "the sheet fell under gravity";
-    glDeleteBuffers(1, &vbo);
+    if (bc.extra == Extra::SelfCollisionOff) {
+        // Switched off, self-collision costs no GL call: the same counts as a cloth never told of it.
+        GlCalls never, unused;
+        drape_stats st_never{};
+        std::vector<float> x_never;
+        count_frames({"never", bc.model, Extra::None}, &never, &unused, &st_never, &x_never);
+        EXPECT_EQ(per_frame.total, never.total);
+        EXPECT_EQ(per_frame.draws, never.draws);
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -216,7 +255,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BudgetCase{"Implicit_Grab", DRAPE_MODEL_IMPLICIT, Extra::GrabAndTethers},
                       BudgetCase{"Implicit", DRAPE_MODEL_IMPLICIT, Extra::None},
                       BudgetCase{"Implicit_Tethers", DRAPE_MODEL_IMPLICIT, Extra::Tethers},
-                      BudgetCase{"Implicit_Colliders", DRAPE_MODEL_IMPLICIT, Extra::CollidersAndTethers}),
+                      BudgetCase{"Implicit_Colliders", DRAPE_MODEL_IMPLICIT, Extra::CollidersAndTethers},
+                      BudgetCase{"Xpbd_SelfCollision", DRAPE_MODEL_XPBD, Extra::SelfCollision},
+                      BudgetCase{"Implicit_SelfCollision", DRAPE_MODEL_IMPLICIT, Extra::SelfCollision},
+                      BudgetCase{"Xpbd_SelfCollisionOff", DRAPE_MODEL_XPBD, Extra::SelfCollisionOff}),
     [](const ::testing::TestParamInfo<BudgetCase>& info) { return std::string(info.param.name); });
 
 }  // namespace

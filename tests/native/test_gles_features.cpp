@@ -39,6 +39,12 @@ drape_cloth* sheet(drape_world* w, drape_backend backend, drape_model model) {
     return c;
 }
 
+float max_abs_diff(const std::vector<float>& a, const std::vector<float>& b) {
+    float m = 0;
+    for (size_t k = 0; k < a.size(); ++k) m = std::max(m, std::fabs(a[k] - b[k]));
+    return m;
+}
+
 // The parity bound of test_gles.cpp: 1e-5 of the cloth size per step over the first 4 steps
 // (a few float ulps per step, two orders of margin), 1e-3 of it over the run.
 void expect_parity(float err, int step) {

@@ -102,3 +102,45 @@ TEST_F(GlesLimits, ReplacingAnEntryPointTheLibraryDoesNotUseChangesNothing) {
     std::string message;
     EXPECT_DRAPE_OK(create(&message));
 }
+
+// Self-collision needs more than a cloth without it (13 vertex texture units for its hash layers,
+// 17 texture units in all, ...): a device below one of those still runs cloths, but the first step
+// with self-collision on fails with the limit's name, and the cloth steps again once it is off.
+TEST_F(GlesLimits, SelfCollisionBelowALimitFailsItsStepByName) {
+    g_real_get_integer =
+        reinterpret_cast<PFNGLGETINTEGERVPROC>(drape_gl_replace("glGetIntegerv", reinterpret_cast<void*>(&get_integer_lowered)));
+    ASSERT_NE(g_real_get_integer, nullptr);
+    Restore restore{"glGetIntegerv", reinterpret_cast<void*>(g_real_get_integer)};
+    const struct {
+        GLenum name;
+        const char* label;
+        GLint value;
+    } lowered[] = {
+        {GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, "GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS", 12},
+        {GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, "GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS", 16},
+        {GL_MAX_COLOR_ATTACHMENTS, "GL_MAX_COLOR_ATTACHMENTS", 0},
+        {GL_MAX_DRAW_BUFFERS, "GL_MAX_DRAW_BUFFERS", 0},
+        {GL_MAX_TEXTURE_IMAGE_UNITS, "GL_MAX_TEXTURE_IMAGE_UNITS", 0},
+    };
+    for (const auto& l : lowered) {
+        g_lowered = l.name;
+        g_lowered_to = l.value;
+        WorldPtr w = make_world(1);
+        drape_cloth* c = make_grid(w.get(), grid_desc(8, 8, 0.5f, 0.5f), 0.1f, DRAPE_BACKEND_GLES);
+        ASSERT_NE(c, nullptr) << l.label;
+        EXPECT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60)) << l.label;
+        drape_self_collision_desc sc{};
+        sc.struct_size = sizeof sc;
+        sc.enabled = 1;
+        sc.thickness = 0.05f;
+        ASSERT_DRAPE_OK(drape_cloth_set_self_collision(c, &sc));
+        EXPECT_EQ(drape_cloth_step(c, 1.0f / 60), DRAPE_ERROR_BACKEND_UNAVAILABLE) << l.label;
+        const std::string message = drape_last_error();
+        EXPECT_NE(message.find(std::string(l.label) + " = " + std::to_string(l.value)), std::string::npos) << message;
+        EXPECT_NE(message.find("self-collision"), std::string::npos) << message;
+        sc.enabled = 0;
+        ASSERT_DRAPE_OK(drape_cloth_set_self_collision(c, &sc));
+        EXPECT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60)) << l.label;
+    }
+    g_lowered = 0;
+}

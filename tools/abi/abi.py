@@ -275,8 +275,9 @@ STRUCTS = [
            "to the side it came from. It works on particles: with a thickness well below the particle spacing a "
            "particle can slip through the middle of a grid cell of another layer; the particle spacing is a good "
            "thickness. A particle moving more than one thickness per substep relative to the cloth's mean motion "
-           "may pass through (raise substeps). Off by default: a cloth without it does no extra work. CPU backends "
-           "only (GLES: not yet).", serializable=True, fields=[
+           "may pass through (raise substeps). Off by default: a cloth without it does no extra work. GLES: the hash is "
+           "rebuilt every substep (cells of 1.5 x thickness, at most 8 particles per bucket), so a pair moving more "
+           "than half a thickness per substep relative to each other may pass through.", serializable=True, fields=[
                field("enabled", "u32", "1 = on, 0 = off (default)", default=0),
                field("thickness", "f32",
                      "distance kept between non-neighbour particles: > 0 when enabled (>= 0 when not), at most 1/4 "

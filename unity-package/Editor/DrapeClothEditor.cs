@@ -191,7 +191,7 @@ namespace Drape.Editing
             if (cloth.Backend == DrapeBackendChoice.Cpu || cloth.Backend == DrapeBackendChoice.CpuThreaded) return "";
             if (Application.isPlaying && cloth.NativeCloth != null)
                 return cloth.BackendReason.Length > 0 ? cloth.BackendReason : "Running on the GPU (OpenGL ES 3).";
-            string problem = DrapeCloth.ExplainGpu(cloth.SimulationSpace, cloth.SelfCollision, SystemInfo.graphicsDeviceType, true);
+            string problem = DrapeCloth.ExplainGpu(cloth.SimulationSpace, SystemInfo.graphicsDeviceType, true);
             return problem == null
                 ? "Backend " + cloth.Backend + ": the GPU (OpenGL ES 3) will run this cloth here."
                 : "Backend " + cloth.Backend + ": in this editor the CPU runs the cloth: " + problem +

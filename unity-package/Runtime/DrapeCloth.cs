@@ -713,10 +713,7 @@ namespace Drape
             {
                 _refusedSelfCollision = desc;
                 _selfCollisionRefused = true;
-                string hint = e.Status == Status.ErrorBackendUnavailable
-                    ? " Self-collision runs on the CPU backends only: set Backend to Auto or CPU."
-                    : "";
-                Debug.LogWarning("Drape: " + name + ": self-collision not applied: " + e.NativeMessage + hint, this);
+                Debug.LogWarning("Drape: " + name + ": self-collision not applied: " + e.NativeMessage, this);
             }
         }
 
@@ -793,7 +790,7 @@ namespace Drape
         }
 
         /// <summary>True if the GLES backend can run this cloth here (see <see cref="ExplainBackend"/>).</summary>
-        public bool GpuUsable() => ExplainGpu(SimulationSpace, _selfCollision, SystemInfo.graphicsDeviceType, GlesInLibrary()) == null;
+        public bool GpuUsable() => ExplainGpu(SimulationSpace, SystemInfo.graphicsDeviceType, GlesInLibrary()) == null;
 
         private static bool GlesInLibrary()
         {
@@ -813,10 +810,9 @@ namespace Drape
 
         /// <summary>Why the GLES backend cannot run a cloth with these settings on this device, in words;
         /// null if it can.</summary>
-        public static string ExplainGpu(DrapeSimulationSpace space, bool selfCollision, GraphicsDeviceType device, bool glesInLibrary)
+        public static string ExplainGpu(DrapeSimulationSpace space, GraphicsDeviceType device, bool glesInLibrary)
         {
             if (space != DrapeSimulationSpace.Local) return "World simulation space runs on the CPU only.";
-            if (selfCollision) return "Self-collision runs on the CPU only.";
             if (device != GraphicsDeviceType.OpenGLES3)
                 return "the active graphics API is " + DeviceName(device) + ", not OpenGLES3. On Android, Unity lists Vulkan " +
                        "before OpenGLES3 by default: to run cloth on the GPU, put OpenGLES3 first (Player Settings > Other " +
@@ -864,7 +860,7 @@ namespace Drape
         {
             string problem = _backend == DrapeBackendChoice.Cpu || _backend == DrapeBackendChoice.CpuThreaded
                 ? null
-                : ExplainGpu(_simulationSpace, _selfCollision, SystemInfo.graphicsDeviceType, GlesInLibrary());
+                : ExplainGpu(_simulationSpace, SystemInfo.graphicsDeviceType, GlesInLibrary());
             Drape.Core.Backend b = ResolveBackend(_backend, vertexCount, problem, out string reason);
             BackendReason = reason;
             if (_backend == DrapeBackendChoice.Gpu && reason.Length > 0) Debug.LogWarning("Drape: " + name + ": " + reason, this);

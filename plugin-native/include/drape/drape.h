@@ -415,7 +415,8 @@ DRAPE_API drape_status drape_cloth_get_stats(const drape_cloth* cloth, drape_sta
 /* ================================ 5. Collision ================================================ */
 /* On a GLES cloth colliders run on the GPU like on the CPU (a collision pass per substep,
  * compiled only while the cloth has colliders; it tests every collider, as the cloth's bounds are
- * on the GPU). Self-collision is CPU-only. */
+ * on the GPU). Self-collision too: a hash pass and a collide pass per substep, made and run only
+ * while it is on. */
 
 /** Most colliders one cloth takes (drape_cloth_set_colliders). */
 #define DRAPE_MAX_COLLIDERS 64
@@ -468,8 +469,9 @@ DRAPE_API drape_status drape_cloth_set_colliders(drape_cloth* cloth, const drape
  * is pushed back to the side it came from. It works on particles: with a thickness well below the particle
  * spacing a particle can slip through the middle of a grid cell of another layer; the particle spacing is a
  * good thickness. A particle moving more than one thickness per substep relative to the cloth's mean motion
- * may pass through (raise substeps). Off by default: a cloth without it does no extra work. CPU backends only
- * (GLES: not yet). */
+ * may pass through (raise substeps). Off by default: a cloth without it does no extra work. GLES: the hash is
+ * rebuilt every substep (cells of 1.5 x thickness, at most 8 particles per bucket), so a pair moving more
+ * than half a thickness per substep relative to each other may pass through. */
 typedef struct drape_self_collision_desc {
     uint32_t struct_size;
     uint32_t enabled; /**< 1 = on, 0 = off (default). Default 0 */
@@ -483,8 +485,9 @@ typedef struct drape_self_collision_desc {
 
 /** Turns self-collision on or off (see drape_self_collision_desc); takes effect at the next step.
  *  Errors: NULL_POINTER, STRUCT_SIZE, NOT_FINITE (thickness, friction), INVALID_ARGUMENT (enabled
- *  not 0/1, thickness or friction out of range), BACKEND_UNAVAILABLE (enabling on a GLES cloth;
- *  turning it off there is accepted and does nothing). A change wakes a sleeping cloth. */
+ *  not 0/1, thickness or friction out of range). A change wakes a sleeping cloth. On a GLES device
+ *  below a limit self-collision needs (13 vertex texture units, ...) the cloth's next step fails with
+ *  BACKEND_UNAVAILABLE naming it; the cloth steps again once self-collision is off. */
 DRAPE_API drape_status drape_cloth_set_self_collision(drape_cloth* cloth, const drape_self_collision_desc* desc);
 /** Current setting (out_desc->struct_size must be set). A new cloth: enabled 0, thickness 0, friction 0. */
 DRAPE_API drape_status drape_cloth_get_self_collision(const drape_cloth* cloth, drape_self_collision_desc* out_desc);

@@ -141,10 +141,9 @@ namespace Drape.Tests
             Assert.That(cloth.BackendReason, Does.Contain("Vulkan"));
             Assert.That(cloth.BackendReason, Does.Contain("OpenGLES3 first"));
 
-            Assert.That(DrapeCloth.ExplainGpu(DrapeSimulationSpace.Local, false, UnityEngine.Rendering.GraphicsDeviceType.OpenGLES3, true), Is.Null);
-            Assert.That(DrapeCloth.ExplainGpu(DrapeSimulationSpace.World, false, UnityEngine.Rendering.GraphicsDeviceType.OpenGLES3, true), Does.Contain("World"));
-            Assert.That(DrapeCloth.ExplainGpu(DrapeSimulationSpace.Local, true, UnityEngine.Rendering.GraphicsDeviceType.OpenGLES3, true), Does.Contain("Self-collision"));
-            Assert.That(DrapeCloth.ExplainGpu(DrapeSimulationSpace.Local, false, UnityEngine.Rendering.GraphicsDeviceType.OpenGLES3, false), Does.Contain("no GLES"));
+            Assert.That(DrapeCloth.ExplainGpu(DrapeSimulationSpace.Local, UnityEngine.Rendering.GraphicsDeviceType.OpenGLES3, true), Is.Null);
+            Assert.That(DrapeCloth.ExplainGpu(DrapeSimulationSpace.World, UnityEngine.Rendering.GraphicsDeviceType.OpenGLES3, true), Does.Contain("World"));
+            Assert.That(DrapeCloth.ExplainGpu(DrapeSimulationSpace.Local, UnityEngine.Rendering.GraphicsDeviceType.OpenGLES3, false), Does.Contain("no GLES"));
             Assert.That(DrapeCloth.ResolveBackend(DrapeBackendChoice.Auto, 100, null, out string none), Is.EqualTo(Backend.Gles));
             Assert.That(none, Is.Empty);
             Assert.That(DrapeCloth.ResolveBackend(DrapeBackendChoice.Auto, 4096, "x", out string why), Is.EqualTo(Backend.CpuThreaded));

@@ -149,7 +149,7 @@ namespace Drape.Core
         [DllImport(Library, CallingConvention = Cdecl)]
         internal static extern Status drape_cloth_set_owner(ClothHandle cloth, ref Owner owner);
 
-        // ---- Self-collision (CPU backends only) ----
+        // ---- Self-collision ----
 
         [DllImport(Library, CallingConvention = Cdecl)]
         internal static extern Status drape_cloth_set_self_collision(ClothHandle cloth, ref SelfCollisionDesc desc);

@@ -1,18 +1,9 @@
 // Self-collision kernels: particle-particle contacts found through a spatial hash.
 //
 // The cloth is a set of particles of radius thickness/2: two particles that are not neighbours in
-// the rest mesh are kept at least `thickness` apart (Mueller et al., "Position based dynamics",
-// 2007, section 4.4, with the hashed grid of Teschner et al., "Optimized spatial hashing for
-// collision detection of deformable objects", VMV 2003; counting-sort layout as in Mueller's
-// "Ten minute physics" 15). Position-based, once per substep after the solve:
-//
-//   C(x_i, x_j) = n . (x_i - x_j) - thickness >= 0,
-//   dx_i = +w_i/(w_i+w_j) * max(0, -C) * n,   dx_j = -w_j/(w_i+w_j) * max(0, -C) * n,
-//
-// with n the unit direction from j to i at the end of the substep, or - when the pair passed
-// through each other during the substep (n0 . (x_i - x_j) < 0 for n0 the direction at the substep
-// start, and the relative path came closer than thickness) - n0, which pushes the pair back to
-// the side it started on instead of completing the pass-through.
+// the rest mesh are kept at least `thickness` apart, position-based, once per substep after the
+// solve (the contact maths, with the hashed grid's bucket, is shaders/self_contact.h, shared with
+// the GLES self-collide pass; counting-sort layout as in Mueller's "Ten minute physics" 15).
 //
 // Candidates: a Verlet list (pairs closer than thickness + skin when it was built) rebuilt only
 // when some particle has moved by more than skin/2 relative to the cloth's mean motion since, so
@@ -30,11 +21,29 @@
 #include <cmath>
 #include <cstdint>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 namespace drape::kernels {
+
+/// The contact maths shared with the GLES self-collide pass (self_contact, self_bucket), written in
+/// the common subset of glm and GLSL: here it sees glm under GLSL's names.
+namespace glsl {
+using glm::dot;
+using glm::ivec3;
+using glm::max;
+using glm::min;
+using glm::vec3;
+using std::sqrt;
+using uint = uint32_t;
+#define DRAPE_OUT(T) T&
+#define DRAPE_INLINE inline
+#include "shaders/self_contact.h"
+#undef DRAPE_OUT
+#undef DRAPE_INLINE
+}  // namespace glsl
 
 /// Cells are clamped to +-kSelfCellLimit per axis, so cell coordinates (and their +-1
 /// neighbours) fit an int32 for any position, NaN included (those land in one far cell; such a
@@ -50,10 +59,8 @@ inline glm::ivec3 self_cell(const glm::vec3& p, float inv_cell) {
     return glm::ivec3(axis(p.x), axis(p.y), axis(p.z));
 }
 
-/// Bucket of a cell in a table of mask+1 (a power of two) buckets (Teschner et al. 2003 primes).
-inline uint32_t self_bucket(const glm::ivec3& c, uint32_t mask) {
-    return ((uint32_t(c.x) * 92837111u) ^ (uint32_t(c.y) * 689287499u) ^ (uint32_t(c.z) * 283923481u)) & mask;
-}
+/// Bucket of a cell in a table of mask+1 (a power of two) buckets.
+inline uint32_t self_bucket(const glm::ivec3& c, uint32_t mask) { return glsl::self_bucket(c, mask); }
 
 /// The hash as the gather reads it (built by CpuCloth::self_collide, backend/cpu/cpu_collide.cpp).
 struct SelfHash {
@@ -120,7 +127,6 @@ inline void self_candidates(const SelfContact& c, const SelfHash& h, const glm::
 inline uint32_t self_collide_gather(const SelfContact& c, const uint32_t* start, const uint32_t* list,
                                     const glm::vec4* x, const glm::vec4* d, glm::vec3* corr, uint32_t begin,
                                     uint32_t end) {
-    const float t = c.thickness;
     uint32_t contacts_total = 0;
     for (uint32_t i = begin; i < end; ++i) {
         const float wi = x[i].w;
@@ -131,49 +137,10 @@ inline uint32_t self_collide_gather(const SelfContact& c, const uint32_t* start,
             for (uint32_t e = start[i]; e < start[i + 1]; ++e) {
                 const uint32_t j = list[e];
                 const glm::vec3 xij = xi - glm::vec3(x[j]);
-                const float dist2 = glm::dot(xij, xij);
-                // Relative motion over the substep: s_ij -> x_ij.
                 const glm::vec3 dij = di - glm::vec3(d[j]);
-                const glm::vec3 sij = xij - dij;
-                const float slen = std::sqrt(glm::dot(sij, sij));
-                glm::vec3 n;
-                bool contact = false;
-                if (slen > 0.0f) {
-                    const glm::vec3 n0 = sij * (1.0f / slen);
-                    if (glm::dot(xij, n0) < 0.0f) {
-                        // Crossed the start plane: a pass-through if the relative path came
-                        // closer than thickness.
-                        const float dd = glm::dot(dij, dij);
-                        const float u = dd > 0.0f ? std::fmin(1.0f, std::fmax(0.0f, -glm::dot(sij, dij) / dd)) : 0.0f;
-                        const glm::vec3 closest = sij + u * dij;
-                        if (glm::dot(closest, closest) < t * t) {
-                            n = n0;
-                            contact = true;
-                        }
-                    }
-                }
-                if (!contact && dist2 < t * t) {
-                    const float len = std::sqrt(dist2);
-                    // Coincident (no direction): +-y by index order, opposite for the two ends.
-                    n = len > 0.0f   ? xij * (1.0f / len)
-                        : slen > 0.0f ? sij * (1.0f / slen)
-                                      : glm::vec3(0.0f, i < j ? 1.0f : -1.0f, 0.0f);
-                    contact = true;
-                }
-                if (!contact) continue;
-                const float wj = x[j].w;
-                const float share = wi / (wi + wj);
-                const float depth = t - glm::dot(xij, n);  // > 0
-                glm::vec3 dxi = (share * depth) * n;
-                if (c.friction > 0.0f) {
-                    // Position-based Coulomb friction on the pair's relative tangential motion
-                    // over the substep (as collide.h; Macklin et al. 2014 eq. 24).
-                    const glm::vec3 rel = dij + depth * n;
-                    const glm::vec3 tan = rel - glm::dot(rel, n) * n;
-                    const float tl = std::sqrt(glm::dot(tan, tan));
-                    const float limit = c.friction * depth;
-                    if (tl > 0.0f) dxi -= share * (tl <= limit ? tan : tan * (limit / tl));
-                }
+                const float share = wi / (wi + x[j].w);
+                glm::vec3 dxi;
+                if (!glsl::self_contact(xij, dij, c.thickness, share, c.friction, i < j ? 1.0f : -1.0f, dxi)) continue;
                 sum += dxi;
                 ++contacts;
             }

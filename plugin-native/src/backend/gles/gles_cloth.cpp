@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iterator>
+#include <optional>
 #include <set>
 
 #include <glm/geometric.hpp>
@@ -22,9 +23,6 @@
 namespace drape::gles {
 namespace {
 
-/// Texels per row of every texture (ES 3.0 guarantees GL_MAX_TEXTURE_SIZE >= 2048; rows are
-/// checked against the real limit). One width for all textures: one uniform, one texel().
-constexpr uint32_t kTexWidth = 1024;
 /// XPBD lambdas ride in the record as vec4s; sim.vert.glsl declares up to 8 (32 slots).
 constexpr uint32_t kMaxLambdaVec4 = 8;
 
@@ -76,6 +74,7 @@ Chebyshev implicit_chebyshev(uint32_t iterations) {
 // once when a program is linked. kSetupUnit: creating and uploading textures outside the passes.
 // Units 0 .. kSetupUnit are saved and restored for the caller.
 constexpr int kNbrUnit = 4, kInfoUnit = 5, kTrisUnit = 6, kSetupUnit = 7;
+static_assert(kSelfRestUnit == kSetupUnit + 1, "self-collision's units follow (gles_self_collide.h)");
 constexpr struct {
     const char* name;
     GLint unit;
@@ -128,6 +127,7 @@ void delete_now(GlObjects& o) {
     if (o.fbo) glDeleteFramebuffers(1, &o.fbo);
     if (o.rbo) glDeleteRenderbuffers(1, &o.rbo);
     for (GLuint p : o.programs) glDeleteProgram(p);
+    delete_self_collide_gl(o.self);
     o = GlObjects{};
 }
 
@@ -151,6 +151,8 @@ void drain_gl_errors() {
     }
 }
 
+}  // namespace
+
 Result gl_error(const char* where) {
     const GLenum e = glGetError();
     if (e == GL_NO_ERROR) return {};
@@ -159,6 +161,8 @@ Result gl_error(const char* where) {
     std::snprintf(code, sizeof code, "0x%04x", unsigned(e));
     return {DRAPE_ERROR_GL, std::string("OpenGL ES error ") + code + " in " + where};
 }
+
+namespace {
 
 /// Saves the GL state a step touches and restores it (Unity caches GL state).
 struct StateGuard {
@@ -261,12 +265,16 @@ Result check_block_layout(GLuint program, GLuint block) {
                                 " is laid out differently by this driver than in sim_uniforms.h:" + wrong};
 }
 
+}  // namespace
+
 Result link(const std::string& vs_source, const char* name, const std::vector<std::string>& varyings,
             GLenum buffer_mode, const std::vector<std::pair<GLuint, const char*>>& attribs, GLuint* out,
-            const char* fs_source = shaders::discard_frag, const char* fs_name = "discard.frag.glsl") {
+            const char* fs_source, const char* fs_name) {
     GLuint vs = 0, fs = 0;
     if (Result r = compile(GL_VERTEX_SHADER, vs_source, name, &vs); !r.ok()) return r;
-    if (Result r = compile(GL_FRAGMENT_SHADER, fs_source, fs_name, &fs); !r.ok()) {
+    if (Result r = compile(GL_FRAGMENT_SHADER, fs_source ? fs_source : shaders::discard_frag,
+                           fs_name ? fs_name : "discard.frag.glsl", &fs);
+        !r.ok()) {
         glDeleteShader(vs);
         return r;
     }
@@ -302,6 +310,8 @@ Result link(const std::string& vs_source, const char* name, const std::vector<st
     *out = p;
     return {};
 }
+
+namespace {
 
 /// Uniform vectors of the simulation's own (u_substep, the DrapeSim block's share), generously;
 /// colliders add 5 each.
@@ -351,6 +361,8 @@ Result check_limits() {
     return {};
 }
 
+}  // namespace
+
 uint32_t rows_for(uint64_t texels) { return uint32_t(std::max<uint64_t>(1, (texels + kTexWidth - 1) / kTexWidth)); }
 
 GLuint make_texture(GLenum internal, uint32_t rows) {
@@ -377,8 +389,6 @@ void upload_uint_texture(GLuint t, GLuint staging, uint32_t rows, std::vector<ui
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTexWidth, GLsizei(rows), GL_RGBA_INTEGER, GL_UNSIGNED_INT, nullptr);
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
 }
-
-}  // namespace
 
 bool GlObjects::empty() const {
     return !buffers[0] && !textures[0] && !nbr_tex && !staging && programs.empty();
@@ -1176,6 +1186,8 @@ Result GlesCloth::gpu_step(float dt) {
         if (Result r = program(kConstraint, &p_constraint); !r.ok()) return r;
         if (Result r = program(kCommit, &p_commit); !r.ok()) return r;
     }
+    if (sc_.enabled)
+        if (Result r = GlesSelfCollide::prepare(*this); !r.ok()) return r;
 
     begin_passes();
     const uint32_t substeps = substeps_for(dt);
@@ -1187,6 +1199,8 @@ Result GlesCloth::gpu_step(float dt) {
         cpu_fresh_ = fresh_;
     }
     run_grabs();  // may hold, release or pick particles: before their start is taken
+    std::optional<GlesSelfCollide::StepScope> self_scope;  // self-collision's units and draw state (after the pick's)
+    if (sc_.enabled) self_scope.emplace(*this);
     if (kinematic_on_gpu()) {
         // Kinematic particles move from where they are now (GPU copy, no readback).
         glBindBuffer(GL_COPY_READ_BUFFER, gl_.buffers[g_[0]]);
@@ -1238,6 +1252,12 @@ Result GlesCloth::gpu_step(float dt) {
         if (p_tether) {
             // kernels::tether after the solve: x, d -> spare, spare2 (the CPU works in place).
             run_tether(*p_tether, cur, disp, spare, spare2);
+            std::swap(cur, spare);
+            std::swap(disp, spare2);
+        }
+        if (sc_.enabled) {
+            // CpuCloth::self_collide after the solve and tethers: x, d -> spare, spare2.
+            GlesSelfCollide::run(*this, cur, disp, spare, spare2);
             std::swap(cur, spare);
             std::swap(disp, spare2);
         }
@@ -1527,9 +1547,7 @@ Result GlesCloth::supports(Feature feature) const {
     case Feature::Grab: return {};  // picked and held on the GPU (gles_grab.cpp)
     case Feature::Owner: return {};  // moved on the GPU (move_gpu_state)
     case Feature::Sleep: return {};  // checked on the GPU (issue_still, poll_still)
-    case Feature::SelfCollision:
-        return {DRAPE_ERROR_BACKEND_UNAVAILABLE, "self-collision is not implemented on the GLES backend yet: use a "
-                                                 "CPU or CPU_THREADED cloth, or leave it off"};
+    case Feature::SelfCollision: return {};  // hash and collide passes (gles_self_collide.h)
     }
     return {};
 }

@@ -27,6 +27,7 @@
 #pragma once
 
 #include "backend/gles/gl_loader.h"  // GL ES 3.0 + EGL, loaded at run time
+#include "backend/gles/gles_self_collide.h"
 #include "backend/gles/sim_uniforms.h"  // generated from tools/abi/abi.py
 
 #include <deque>
@@ -40,6 +41,10 @@
 #include "core/drag.h"  // kMaxGrabs
 
 namespace drape::gles {
+
+/// Texels per row of every texture (ES 3.0 guarantees GL_MAX_TEXTURE_SIZE >= 2048; rows are
+/// checked against the real limit). One width for all textures: one uniform, one texel().
+constexpr uint32_t kTexWidth = 1024;
 
 /// True when an OpenGL ES >= 3.0 context is current on this thread; otherwise *why says why.
 bool context_current(std::string* why = nullptr);
@@ -72,11 +77,28 @@ struct GlObjects {
     GLuint pick_fbo = 0, pick_tex = 0, pick_depth = 0, grab_targets = 0;
     std::vector<GLuint> programs;
     std::vector<GLuint> vaos;  ///< per pass configuration (GlesCloth::vertex_array)
+    SelfCollideGl self;        ///< self-collision's (gles_self_collide.h)
     void* context = nullptr;  ///< EGLContext they were made in
     bool empty() const;
 };
 /// Deletes them now (context current) or when a context they belong to is next current.
 void release_gl(GlObjects& objects);
+
+// gles_cloth.cpp's GL helpers that the self-collide passes (gles_self_collide.cpp) use too.
+/// DRAPE_ERROR_GL naming `where` if GL reported an error (all pending errors cleared).
+Result gl_error(const char* where);
+/// Compiles and links a program: vertex source vs and a fragment stage (fs_source named fs_name, or
+/// discard.frag.glsl), transform-feedback varyings, attribute locations; samplers of the
+/// simulation's tables and the DrapeSim block bound.
+Result link(const std::string& vs_source, const char* name, const std::vector<std::string>& varyings,
+            GLenum buffer_mode, const std::vector<std::pair<GLuint, const char*>>& attribs, GLuint* out,
+            const char* fs_source = nullptr, const char* fs_name = nullptr);
+/// Rows of kTexWidth texels that hold `texels`.
+uint32_t rows_for(uint64_t texels);
+/// A kTexWidth x rows texture, nearest filtering (made on the setup unit).
+GLuint make_texture(GLenum internal, uint32_t rows);
+/// Uploads RGBA32UI texels (padded to whole rows here) through the pixel-unpack buffer `staging`.
+void upload_uint_texture(GLuint t, GLuint staging, uint32_t rows, std::vector<uint32_t>& texels);
 
 class GlesCloth final : public Cloth {
 public:
@@ -137,6 +159,7 @@ public:
     void forget_gl();
 
 private:
+    friend class GlesSelfCollide;  // its passes use the buffers, textures and pass helpers below
     struct Op {
         float dt = 0;                          // > 0: a step
         std::function<void(Cloth&)> edit;      // else an edit
