@@ -1,7 +1,7 @@
 // One particle against one collider, in the collider's local frame: the collision maths of the CPU
 // backend (backend/cpu/collide.h) and of the GLES interaction pass (sim.vert.glsl), written once in
 // the common subset of glm and GLSL. C++ includes it with glm's types and functions under GLSL's names
-// and DRAPE_OUT(T) = T&; embed_shaders.cmake splices it into the shader, where DRAPE_OUT(T) = out T.
+// and DRAPE_OUT(T) = T& (backend/cpu/glsl.h); embed_shaders.cmake splices it into the shader, where DRAPE_OUT(T) = out T.
 //
 // Collider motion: each collider is given at the start and at the end of the substep. The test runs
 // in its local frame: p0 = particle at the substep start relative to the collider at the substep

@@ -1,7 +1,7 @@
 // One self-collision contact between particles i and j, and the spatial hash's bucket of a cell:
 // the maths of the CPU self-collide stage (backend/cpu/self_collide.h) and of the GLES self-collide
 // pass (self_collide.vert.glsl, self_hash.vert.glsl), written once in the common subset of glm and
-// GLSL (as collide_shape.h: C++ includes it with glm under GLSL's names and DRAPE_OUT(T) = T&).
+// GLSL (as collide_shape.h: C++ includes it through backend/cpu/glsl.h).
 //
 // Particles have radius thickness/2 (Mueller et al., "Position based dynamics", 2007, sec. 4.4):
 //   C(x_i, x_j) = n . (x_i - x_j) - thickness >= 0,   dx_i = +w_i/(w_i+w_j) * max(0, -C) * n,

@@ -1,6 +1,7 @@
 #version 300 es
 // Drape GLES 3.0 simulation passes (transform feedback, one vertex = one particle).
-// Mirrors plugin-native/src/backend/cpu/kernels.h line by line; keep the two in sync.
+// Mirrors plugin-native/src/backend/cpu/kernels.h: the maths per particle and spring is substep.h,
+// shared with it; the loops over springs and the record reads are kept in step by hand.
 //
 // State (as on the CPU, see the top of kernels.h): position x and displacement d over the last
 // substep (velocity * h_prev), two buffers of one vec4 record per particle (xyz + w inverse mass).
@@ -233,22 +234,9 @@ uvec4 fetch_info(int i) { return texelFetch(u_info, texel(i), 0); }
 // kernels::active_slot: a group is on where its stiffness is
 bool active_group(uint g) { return g < uint(DRAPE_GROUP_COUNT) && u_stiffness[g] > 0.0; }
 
-// kernels::direction: unit vector and length; zero vector for a zero-length spring.
-vec3 direction(vec3 d, out float len) {
-    len = sqrt(dot(d, d));
-    return len > 0.0 ? d * (1.0 / len) : vec3(0.0);
-}
-
-// kernels::external_accel
-vec3 external_accel(vec3 v) { return u_gravity + u_air_drag * (u_wind - v); }
+#include "substep.h"  // direction, spring_force, xpbd_delta, ...: the CPU kernels' maths
 
 #ifdef DRAPE_PASS_CONSTRAINT
-// kernels::jacobi_scale
-float jacobi_scale(float wi, float wj, uint ci, uint cj, float diag, float gamma_factor) {
-    float off = gamma_factor * (wi * float(ci - 1u) + wj * float(cj - 1u));
-    return 1.0 / (1.0 + u_jacobi_coupling * off / diag);
-}
-
 // The particle a constraint pass solves for: displacement iterate d, substep start s, inverse
 // mass w, active springs c, first neighbour-table slot and used slots (0 when kinematic).
 struct Own {
@@ -275,17 +263,13 @@ float solve_slot(Own o, int s, float lambda, inout vec3 dx) {
     float len;
     vec3 n = direction((o.s - fetch_aux(j).xyz) + dij, len);
     float constraint = len - uintBitsToFloat(nb.y);
-    float wsum = o.w + wj;
-    float dl;
+    // The CPU's factor (kernels::spring_coefficients), here per slot and iteration.
 #ifdef DRAPE_XPBD
-    float alpha = u_compliance[g];
-    float gamma = u_damping_ratio[g];
-    float diag = (1.0 + gamma) * wsum + alpha;
-    dl = (-constraint - alpha * lambda - gamma * dot(n, dij)) / diag;
-    dl *= jacobi_scale(o.w, wj, o.c, fetch_info(j).y, diag, 1.0 + gamma);
+    float coef =
+        xpbd_coefficient(o.w, wj, o.c, fetch_info(j).y, u_compliance[g], u_damping_ratio[g], u_jacobi_coupling);
+    float dl = xpbd_delta(constraint, u_compliance[g], lambda, u_damping_ratio[g], n, dij, coef);
 #else
-    dl = -constraint / wsum * u_stiffness[g];
-    dl *= jacobi_scale(o.w, wj, o.c, fetch_info(j).y, wsum, 1.0);
+    float dl = -constraint * pbd_coefficient(o.w, wj, o.c, fetch_info(j).y, u_stiffness[g], u_jacobi_coupling);
 #endif
     dx += (o.w * dl) * n;
     return lambda + dl;
@@ -388,9 +372,8 @@ vec3 drag_share(vec3 x) {
 #endif
 
 #ifdef DRAPE_KINEMATIC
-// Kinematic particles move along a straight line from their start to their target (Cloth::step
-// kinematic_at).
-vec3 kinematic_at() { return a_kstart + (a_ktarget - a_kstart) * u_substep.w; }
+// This substep's end on the pin path (CpuCloth::kinematic_position).
+vec3 kinematic_at() { return kinematic_path(a_kstart, a_ktarget, u_substep.w); }
 #endif
 
 void main() {
@@ -441,12 +424,8 @@ void main() {
     // kernels::tether (the CPU updates in place; anchors are kinematic, so they do not move here)
     v_x = a_x;
     v_d = a_aux;
-    float limit = a_tether_length;
-    if (limit < 0.0 || wi == 0.0) return;
-    float len;
-    vec3 n = direction(xi - fetch_x(int(a_tether_anchor)).xyz, len);
-    if (len <= limit) return;
-    vec3 pull = n * (limit - len);
+    vec3 pull;
+    if (!tether_pull(xi, wi, fetch_x(int(a_tether_anchor)).xyz, a_tether_length, pull)) return;
     v_x = vec4(xi + pull, wi);
     v_d = vec4(a_aux.xyz + pull, a_aux.w);
     return;
@@ -476,13 +455,10 @@ void main() {
         if (!active_group(nb.z)) continue;
         int j = int(nb.x);
         vec3 vj = fetch_aux(j).xyz * u_substep.x;
-        float len;
-        vec3 n = direction(xi - fetch_x(j).xyz, len);
-        float k = u_stiffness[nb.z];
-        force += (-k * (len - uintBitsToFloat(nb.y)) - u_damping * dot(vi - vj, n)) * n;
+        force += spring_force(xi - fetch_x(j).xyz, vi - vj, uintBitsToFloat(nb.y), u_stiffness[nb.z], u_damping);
     }
-    vec3 a = wi * force + external_accel(vi);
-    vec3 dn = a_aux.xyz * u_substep.y + a * (u_h * u_substep.z);
+    vec3 a = wi * force + external_accel(u_gravity, u_air_drag, u_wind, vi);
+    vec3 dn = verlet_displacement(a_aux.xyz, u_substep.y, a, u_h, u_substep.z);
     v_x = vec4(xi + dn, wi);
     v_d = vec4(dn, wi);
 
@@ -491,7 +467,7 @@ void main() {
     vec3 dn = vec3(0.0);
     if (wi != 0.0) {
         vec3 vi = a_aux.xyz * u_substep.x;
-        vec3 a = external_accel(vi);
+        vec3 a = external_accel(u_gravity, u_air_drag, u_wind, vi);
 #ifdef DRAPE_DASHPOT
         vec3 force = vec3(0.0);
         float ci = float(info.y);
@@ -501,14 +477,11 @@ void main() {
             int j = int(nb.x);
             vec4 rj = fetch_x(j);
             vec3 vj = fetch_aux(j).xyz * u_substep.x;
-            float len;
-            vec3 n = direction(xi - rj.xyz, len);
-            float limit = 1.0 / (u_h * (wi * ci + rj.w * float(fetch_info(j).y)));
-            force -= min(u_damping, limit) * dot(vi - vj, n) * n;
+            force += dashpot_force(xi - rj.xyz, vi - vj, u_damping, u_h, wi, ci, rj.w, float(fetch_info(j).y));
         }
         a += wi * force;
 #endif
-        dn = a_aux.xyz * u_substep.y + a * (u_h * u_substep.z);
+        dn = verlet_displacement(a_aux.xyz, u_substep.y, a, u_h, u_substep.z);
     }
 #ifdef DRAPE_KINEMATIC
     // Cloth::step: the kinematic displacement of this substep, kinematic_at - x

@@ -17,25 +17,10 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "backend/cpu/glsl.h"  // glsl::shape_distance, collide_local (shaders/collide_shape.h)
 #include "core/interaction.h"  // CollideShape
 
 namespace drape::kernels {
-
-/// The collision maths shared with the GLES interaction pass (shape_distance, collide_local), written
-/// in the common subset of glm and GLSL: here it sees glm under GLSL's names.
-namespace glsl {
-using glm::abs;
-using glm::dot;
-using glm::max;
-using glm::min;
-using glm::vec3;
-using std::sqrt;
-#define DRAPE_OUT(T) T&
-#define DRAPE_INLINE inline
-#include "shaders/collide_shape.h"
-#undef DRAPE_OUT
-#undef DRAPE_INLINE
-}  // namespace glsl
 
 /// Moves particles [begin, end) of x out of every collider (surface + margin) and applies
 /// friction to their tangential motion relative to the collider over the substep.

@@ -182,8 +182,7 @@ void CpuCloth::begin(float dt) {
 }
 
 glm::vec3 CpuCloth::kinematic_position(uint32_t k, float along) const {
-    // Kinematic particles move along a straight line from their start to their target.
-    return kinematic_start_[k] + (kinematic_target_[k] - kinematic_start_[k]) * along;
+    return kernels::glsl::kinematic_path(kinematic_start_[k], kinematic_target_[k], along);
 }
 
 void CpuCloth::predict(float along) {

@@ -3,8 +3,8 @@
 // Every kernel is a gather: particle i reads its own record and its neighbours' records from
 // input buffers and writes only its own record to an output buffer (Jacobi style, the paper's
 // per-vertex formulation). That is what a GLES vertex shader with transform feedback can do, so
-// shaders/ mirrors these functions line by line, and any split of the range over threads gives
-// the same bits.
+// shaders/sim.vert.glsl mirrors these functions, and any split of the range over threads gives
+// the same bits. The maths per particle and spring is shaders/substep.h, shared with it.
 //
 // Records are 16 bytes: xyz + w inverse mass (1/kg; 0 = pinned/kinematic). The state of a
 // particle is two records: its position x and its displacement d over the last substep (the
@@ -21,6 +21,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "backend/cpu/glsl.h"  // glsl::direction, spring_force, ... (shaders/substep.h)
 #include "core/params.h"
 #include "core/topology.h"
 
@@ -69,15 +70,23 @@ inline bool active_slot(const SubstepContext& c, size_t slot) {
     return g < DRAPE_GROUP_COUNT && c.groups.active[g];
 }
 
-/// Unit vector and length of d; zero vector for a zero-length spring (no direction, no force).
-inline glm::vec3 direction(const glm::vec3& d, float* len) {
-    *len = std::sqrt(glm::dot(d, d));
-    return *len > 0 ? d * (1.0f / *len) : glm::vec3(0.0f);
+/// Calls fn(j, rest, k) for each active spring of particle i: the particle at its other end, its
+/// rest length (m) and stiffness (N/m). Row-major table: a particle's springs are contiguous.
+template <class Fn>
+inline void for_active_springs(const SubstepContext& c, uint32_t i, Fn&& fn) {
+    const size_t row = size_t(i) * c.slots;
+    for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
+        const size_t slot = row + s;
+        if (active_slot(c, slot)) fn(c.nbr_index[slot], c.nbr_rest[slot], c.groups.stiffness[c.nbr_group[slot]]);
+    }
 }
 
-/// External acceleration: gravity plus linear air drag towards the wind velocity.
+/// glsl::direction with the length through a pointer (the IMPLICIT kernels' form).
+inline glm::vec3 direction(const glm::vec3& d, float* len) { return glsl::direction(d, *len); }
+
+/// glsl::external_accel with this substep's gravity, drag and wind.
 inline glm::vec3 external_accel(const SubstepContext& c, const glm::vec3& v) {
-    return c.gravity + c.air_drag * (c.wind - v);
+    return glsl::external_accel(c.gravity, c.air_drag, c.wind, v);
 }
 
 /// MASS_SPRING (paper eq. 1-3): Hooke force plus a dashpot along each spring, then a Verlet step
@@ -96,19 +105,11 @@ inline void mass_spring_step(const SubstepContext& c, const Particle* x, const P
         }
         const glm::vec3 vi = glm::vec3(d[i]) * inv_hp;
         glm::vec3 force(0.0f);
-        const size_t row = size_t(i) * c.slots;
-        for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
-            const size_t slot = row + s;
-            if (!active_slot(c, slot)) continue;
-            const uint32_t j = c.nbr_index[slot];
-            const glm::vec3 vj = glm::vec3(d[j]) * inv_hp;
-            float len;
-            const glm::vec3 n = direction(xi - glm::vec3(x[j]), &len);
-            const float k = c.groups.stiffness[c.nbr_group[slot]];
-            force += (-k * (len - c.nbr_rest[slot]) - c.damping * glm::dot(vi - vj, n)) * n;
-        }
+        for_active_springs(c, i, [&](uint32_t j, float rest, float k) {
+            force += glsl::spring_force(xi - glm::vec3(x[j]), vi - glm::vec3(d[j]) * inv_hp, rest, k, c.damping);
+        });
         const glm::vec3 a = wi * force + external_accel(c, vi);
-        const glm::vec3 dn = glm::vec3(d[i]) * c.h_ratio + a * (c.h * c.accel_h);
+        const glm::vec3 dn = glsl::verlet_displacement(glm::vec3(d[i]), c.h_ratio, a, c.h, c.accel_h);
         x_out[i] = Particle(xi + dn, wi);
         d_out[i] = Particle(dn, wi);
     }
@@ -133,21 +134,13 @@ inline void predict(const SubstepContext& c, const Particle* x, const Particle* 
             if (kDashpot) {
                 const glm::vec3 xi(x[i]);
                 glm::vec3 force(0.0f);
-                const size_t row = size_t(i) * c.slots;
-                for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
-                    const size_t slot = row + s;
-                    if (!active_slot(c, slot)) continue;
-                    const uint32_t j = c.nbr_index[slot];
-                    const glm::vec3 vj = glm::vec3(d[j]) * inv_hp;
-                    float len;
-                    const glm::vec3 n = direction(xi - glm::vec3(x[j]), &len);
-                    const float limit = 1.0f / (c.h * (wi * float(c.active_count[i]) +
-                                                       x[j].w * float(c.active_count[j])));
-                    force -= std::fmin(c.damping, limit) * glm::dot(vi - vj, n) * n;
-                }
+                for_active_springs(c, i, [&](uint32_t j, float, float) {
+                    force += glsl::dashpot_force(xi - glm::vec3(x[j]), vi - glm::vec3(d[j]) * inv_hp, c.damping, c.h,
+                                                 wi, float(c.active_count[i]), x[j].w, float(c.active_count[j]));
+                });
                 a += wi * force;
             }
-            dn = glm::vec3(d[i]) * c.h_ratio + a * (c.h * c.accel_h);
+            dn = glsl::verlet_displacement(glm::vec3(d[i]), c.h_ratio, a, c.h, c.accel_h);
         }
         out[i] = Particle(dn, wi);
     }
@@ -156,19 +149,9 @@ inline void predict(const SubstepContext& c, const Particle* x, const Particle* 
             std::fill(c.lambda + size_t(s) * c.stride + begin, c.lambda + size_t(s) * c.stride + end, 0.0f);
 }
 
-/// Jacobi scaling of one constraint's update: 1 / (1 + theta R), R = the constraint's off-diagonal
-/// row sum over its diagonal in J W J^T + alpha~ (with |cos| <= 1, so it holds in any pose).
-/// An uncoupled constraint gets the full update; for theta > 1/2 the scaled Jacobi iteration
-/// converges (2P - A is diagonally dominant).
-inline float jacobi_scale(float wi, float wj, uint32_t ci, uint32_t cj, float diag, float gamma_factor) {
-    const float off = gamma_factor * (wi * float(ci - 1) + wj * float(cj - 1));
-    return 1.0f / (1.0f + kJacobiCoupling * off / diag);
-}
-
-/// Per-spring factor of a Jacobi update, computed once per step (it depends on h, the masses and
-/// the active springs, none of which change between substeps): XPBD's 1/diag and PBD's k/wsum,
-/// each times jacobi_scale; 0 for inactive springs and padding. Column-major like `lambda`;
-/// symmetric in i and j.
+/// Per-spring factor of a Jacobi update (glsl::xpbd_coefficient, glsl::pbd_coefficient), computed
+/// once per step (it depends on h, the masses and the active springs, none of which change between
+/// substeps); 0 for inactive springs and padding. Column-major like `lambda`; symmetric in i and j.
 template <bool kXpbd>
 inline void spring_coefficients(const SubstepContext& c, const Particle* x, float* coef, uint32_t begin, uint32_t end) {
     for (uint32_t i = begin; i < end; ++i) {
@@ -182,15 +165,10 @@ inline void spring_coefficients(const SubstepContext& c, const Particle* x, floa
             if (s >= c.nbr_count[i] || !active_slot(c, slot) || wi == 0.0f) continue;
             const uint32_t j = c.nbr_index[slot];
             const uint8_t g = c.nbr_group[slot];
-            const float wj = x[j].w;
-            const float wsum = wi + wj;
-            if (kXpbd) {
-                const float gamma = c.groups.damping_ratio[g];
-                const float diag = (1.0f + gamma) * wsum + c.groups.compliance[g];
-                k = jacobi_scale(wi, wj, c.active_count[i], c.active_count[j], diag, 1.0f + gamma) / diag;
-            } else {
-                k = c.groups.stiffness[g] * jacobi_scale(wi, wj, c.active_count[i], c.active_count[j], wsum, 1.0f) / wsum;
-            }
+            const uint32_t ci = c.active_count[i], cj = c.active_count[j];
+            k = kXpbd ? glsl::xpbd_coefficient(wi, x[j].w, ci, cj, c.groups.compliance[g], c.groups.damping_ratio[g],
+                                               kJacobiCoupling)
+                      : glsl::pbd_coefficient(wi, x[j].w, ci, cj, c.groups.stiffness[g], kJacobiCoupling);
         }
     }
 }
@@ -224,8 +202,8 @@ inline void constraint_iteration(const SubstepContext& c, const float* coef, con
                     // Without stored multipliers (one iteration per substep) lambda is 0 here:
                     // -C - 0 is -C exactly, so skipping the term changes no bit.
                     const float lambda = c.lambda ? c.lambda[slot] : 0.0f;
-                    dl = (-constraint - c.groups.compliance[g] * lambda -
-                          c.groups.damping_ratio[g] * glm::dot(n, dij)) * coef[slot];
+                    dl = glsl::xpbd_delta(constraint, c.groups.compliance[g], lambda, c.groups.damping_ratio[g], n, dij,
+                                          coef[slot]);
                     if (c.lambda) c.lambda[slot] = lambda + dl;
                 } else {
                     dl = -constraint * coef[slot];
@@ -255,17 +233,6 @@ inline void implicit_predict(const SubstepContext& c, const Particle* x, const P
         }
         target[i] = Particle(y, wi);
         first[i] = Particle(inertia, wi);
-    }
-}
-
-/// Calls fn(j, rest, k) for each active spring of particle i: the particle at its other end, its
-/// rest length (m) and stiffness (N/m). Row-major table: a particle's springs are contiguous.
-template <class Fn>
-inline void for_active_springs(const SubstepContext& c, uint32_t i, Fn&& fn) {
-    const size_t row = size_t(i) * c.slots;
-    for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
-        const size_t slot = row + s;
-        if (active_slot(c, slot)) fn(c.nbr_index[slot], c.nbr_rest[slot], c.groups.stiffness[c.nbr_group[slot]]);
     }
 }
 
@@ -338,21 +305,17 @@ inline double implicit_curvature(const SubstepContext& c, const Particle* disp, 
     return sum;
 }
 
-/// Tethers (long-range attachments, Kim, Chentanez and Mueller 2012): particle i may be at most
-/// `length[i]` from the kinematic particle `anchor[i]`; beyond that it is pulled back onto the
-/// sphere, and its displacement takes the same correction (no velocity away from the anchor).
-/// One-sided and local, so it runs after the solve in O(n) and stops the stretch a local solver
-/// cannot remove in few passes on a fine cloth. Particles without an anchor have length < 0.
+/// Tethers (glsl::tether_pull): particle i may be at most `length[i]` from the kinematic particle
+/// `anchor[i]`; its displacement takes the same correction as its position (no velocity away from
+/// the anchor). One-sided and local, so it runs after the solve in O(n) and stops the stretch a
+/// local solver cannot remove in few passes on a fine cloth. Particles without an anchor have
+/// length < 0.
 inline void tether(const uint32_t* anchor, const float* length, Particle* x, Particle* d, uint32_t begin,
                    uint32_t end) {
     for (uint32_t i = begin; i < end; ++i) {
-        const float limit = length[i];
-        if (limit < 0.0f || x[i].w == 0.0f) continue;
         const glm::vec3 xi(x[i]);
-        float len;
-        const glm::vec3 n = direction(xi - glm::vec3(x[anchor[i]]), &len);
-        if (len <= limit) continue;
-        const glm::vec3 pull = n * (limit - len);
+        glm::vec3 pull;
+        if (!glsl::tether_pull(xi, x[i].w, glm::vec3(x[anchor[i]]), length[i], pull)) continue;
         x[i] = Particle(xi + pull, x[i].w);
         d[i] += Particle(pull, 0.0f);
     }

@@ -5,6 +5,8 @@
 // results are bit-identical to kernels::constraint_iteration and the GLES mirror still matches.
 // Lanes past their particle's spring count read the padding slots, whose factor is 0, and add
 // nothing.
+// The maths of direction and xpbd_delta (shaders/substep.h) is written out again here in vector
+// form: the shared functions take one particle's vec3s, these four lanes' components.
 #pragma once
 
 #include <cstdint>

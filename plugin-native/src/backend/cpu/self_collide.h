@@ -26,24 +26,9 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-namespace drape::kernels {
+#include "backend/cpu/glsl.h"  // glsl::self_contact, self_bucket (shaders/self_contact.h)
 
-/// The contact maths shared with the GLES self-collide pass (self_contact, self_bucket), written in
-/// the common subset of glm and GLSL: here it sees glm under GLSL's names.
-namespace glsl {
-using glm::dot;
-using glm::ivec3;
-using glm::max;
-using glm::min;
-using glm::vec3;
-using std::sqrt;
-using uint = uint32_t;
-#define DRAPE_OUT(T) T&
-#define DRAPE_INLINE inline
-#include "shaders/self_contact.h"
-#undef DRAPE_OUT
-#undef DRAPE_INLINE
-}  // namespace glsl
+namespace drape::kernels {
 
 /// Cells are clamped to +-kSelfCellLimit per axis, so cell coordinates (and their +-1
 /// neighbours) fit an int32 for any position, NaN included (those land in one far cell; such a

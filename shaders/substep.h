@@ -1,0 +1,96 @@
+// Per-particle maths of a substep: Verlet prediction, MASS_SPRING and PBD dashpot forces, the PBD and
+// XPBD constraint updates and tethers, for the CPU kernels (backend/cpu/kernels.h) and the GLES
+// simulation passes (sim.vert.glsl), written once in the common subset of glm and GLSL (as
+// collide_shape.h: C++ includes it through backend/cpu/glsl.h). What stays on each side is where the
+// records come from (arrays or textures) and the loops over springs.
+#ifndef DRAPE_SHADERS_SUBSTEP_H
+#define DRAPE_SHADERS_SUBSTEP_H
+
+#ifdef GL_ES
+#define DRAPE_OUT(T) out T
+#define DRAPE_INLINE
+#endif
+
+// Unit vector and length of d; zero vector for a zero-length spring (no direction, no force).
+DRAPE_INLINE vec3 direction(vec3 d, DRAPE_OUT(float) len) {
+    len = sqrt(dot(d, d));
+    return len > 0.0f ? d * (1.0f / len) : vec3(0.0f);
+}
+
+// External acceleration (m/s^2) at velocity v: gravity plus linear air drag towards the wind.
+DRAPE_INLINE vec3 external_accel(vec3 gravity, float air_drag, vec3 wind, vec3 v) {
+    return gravity + air_drag * (wind - v);
+}
+
+// A kinematic (pinned) particle's position at a fraction `along` of the step: on the straight line
+// from where it started the step to its pin target.
+DRAPE_INLINE vec3 kinematic_path(vec3 start, vec3 target, float along) { return start + (target - start) * along; }
+
+// Variable-step Verlet in displacement form (paper eq. 3): this substep's displacement
+// d' = d h/h_prev + a h (h + h_prev)/2 from the last one's d, with h_ratio = h/h_prev and
+// accel_h = (h + h_prev)/2 (h/2 on the first step: exact for constant acceleration, accuracy.md R1).
+DRAPE_INLINE vec3 verlet_displacement(vec3 d, float h_ratio, vec3 a, float h, float accel_h) {
+    return d * h_ratio + a * (h * accel_h);
+}
+
+// MASS_SPRING force (N) on particle i from one spring (paper eq. 1-2): Hooke's k (len - rest) plus a
+// dashpot kd on the relative velocity, both along the spring. xij = x_i - x_j, vij = v_i - v_j.
+DRAPE_INLINE vec3 spring_force(vec3 xij, vec3 vij, float rest, float k, float kd) {
+    float len;
+    vec3 n = direction(xij, len);
+    return (-k * (len - rest) - kd * dot(vij, n)) * n;
+}
+
+// PBD's explicit dashpot (N) on particle i along one spring (PBD has no compliance to carry damping):
+// kd limited to 1/(h (wi ci + wj cj)), ci and cj the two ends' active springs, so that the explicit
+// update cannot overshoot.
+DRAPE_INLINE vec3 dashpot_force(vec3 xij, vec3 vij, float kd, float h, float wi, float ci, float wj, float cj) {
+    float len;
+    vec3 n = direction(xij, len);
+    float limit = 1.0f / (h * (wi * ci + wj * cj));
+    return -(min(kd, limit) * dot(vij, n)) * n;
+}
+
+// Jacobi scaling of one constraint's update: 1 / (1 + theta R), R = the constraint's off-diagonal row
+// sum over its diagonal in J W J^T + alpha~ (with |cos| <= 1, so it holds in any pose); theta =
+// coupling (kJacobiCoupling). An uncoupled constraint gets the full update; for theta > 1/2 the
+// scaled Jacobi iteration converges (2P - A is diagonally dominant).
+DRAPE_INLINE float jacobi_scale(float wi, float wj, uint ci, uint cj, float diag, float gamma_factor, float coupling) {
+    float off = gamma_factor * (wi * float(ci - 1u) + wj * float(cj - 1u));
+    return 1.0f / (1.0f + coupling * off / diag);
+}
+
+// Factor of one spring's Jacobi update, symmetric in i and j. XPBD (Macklin 2016 eq. 18, damping as
+// eq. 26): 1/diag, diag = (1 + gamma)(wi + wj) + alpha~, times jacobi_scale.
+DRAPE_INLINE float xpbd_coefficient(float wi, float wj, uint ci, uint cj, float alpha, float gamma, float coupling) {
+    float diag = (1.0f + gamma) * (wi + wj) + alpha;
+    return jacobi_scale(wi, wj, ci, cj, diag, 1.0f + gamma, coupling) / diag;
+}
+
+// PBD (paper eq. 7-8, a fraction k of the correction per iteration): k/(wi + wj) times jacobi_scale.
+DRAPE_INLINE float pbd_coefficient(float wi, float wj, uint ci, uint cj, float k, float coupling) {
+    float wsum = wi + wj;
+    return k * jacobi_scale(wi, wj, ci, cj, wsum, 1.0f, coupling) / wsum;
+}
+
+// XPBD multiplier change of one spring with constraint value C = len - rest and damping along n:
+// (-C - alpha~ lambda - gamma n.dij) * coef (PBD's is -C * coef). dij = d_i - d_j, the relative
+// displacement over the substep so far.
+DRAPE_INLINE float xpbd_delta(float constraint, float alpha, float lambda, float gamma, vec3 n, vec3 dij, float coef) {
+    return (-constraint - alpha * lambda - gamma * dot(n, dij)) * coef;
+}
+
+// Tether (long-range attachment, Kim, Chentanez and Mueller 2012): particle x (inverse mass w) may be
+// at most `limit` from its anchor; beyond that `pull` brings it back onto the sphere. False, with no
+// pull, when it is within, kinematic (w = 0) or has no tether (limit < 0).
+DRAPE_INLINE bool tether_pull(vec3 x, float w, vec3 anchor, float limit, DRAPE_OUT(vec3) pull) {
+    pull = vec3(0.0f);
+    if (limit < 0.0f || w == 0.0f) return false;
+    float len;
+    vec3 n = direction(x - anchor, len);
+    if (len <= limit) return false;
+    pull = n * (limit - len);
+    return true;
+}
+
+#endif
