@@ -13,6 +13,7 @@
 #define DRAPE_SHADERS_COLLIDE_SHAPE_H
 
 #include "layout.h"
+#include "substep.h"  // quat_rotate, quat_conjugate
 
 #ifdef GL_ES
 #define DRAPE_OUT(T) out T
@@ -125,6 +126,18 @@ DRAPE_INLINE bool collide_local(int shape, vec3 size, float margin, float fricti
         else q -= tangential * (limit / tl);
     }
     return true;
+}
+
+// One particle against one moving collider, which goes from (pos0, rot0) at the substep start to
+// (pos1, rot1) at its end (rotations as quaternions (x, y, z, w)): s is the particle at the substep
+// start, x where the solve put it. collide_local in the collider's frame (s in the start frame, x in the
+// end frame); false when the motion does not touch the shape, else true with the resolved point q in the
+// end frame (quat_rotate(rot1, q) + pos1 in the world).
+DRAPE_INLINE bool collide_moving(int shape, vec3 size, float margin, float friction, vec3 pos0, vec4 rot0, vec3 pos1,
+                                 vec4 rot1, vec3 s, vec3 x, DRAPE_OUT(vec3) q) {
+    vec3 p0 = quat_rotate(quat_conjugate(rot0), s - pos0);
+    vec3 p1 = quat_rotate(quat_conjugate(rot1), x - pos1);
+    return collide_local(shape, size, margin, friction, p0, p1, q);
 }
 
 #endif

@@ -324,18 +324,8 @@ vec3 jacobi_step(int row, int count, vec3 di, vec3 si, vec3 yi, float wi) {
 }
 #endif
 
-#if DRAPE_SHAPES > 0 || defined(DRAPE_PASS_MOVE)
-// glm's quat * vec3 (glm/detail/type_quat.inl), q = (x, y, z, w)
-vec3 rotate(vec4 q, vec3 v) {
-    vec3 uv = cross(q.xyz, v);
-    vec3 uuv = cross(q.xyz, uv);
-    return v + ((uv * q.w) + uuv) * 2.0;
-}
-vec4 conjugate(vec4 q) { return vec4(-q.xyz, q.w); }
-#endif
-
 #if DRAPE_SHAPES > 0
-#include "collide_shape.h"  // shape_distance, collide_local: the CPU's collision maths
+#include "collide_shape.h"  // collide_moving: the CPU's collision maths
 #endif
 
 #ifdef DRAPE_DRAG
@@ -358,7 +348,7 @@ vec3 drag_share(vec3 x) {
         for (; k < u_touch_count && int(u_touches[DRAPE_TOUCH_VEC4 * k + 1].z) == view; ++k) {
             vec4 t0 = u_touches[DRAPE_TOUCH_VEC4 * k], t1 = u_touches[DRAPE_TOUCH_VEC4 * k + 1];
             vec2 d = px - t0.xy;
-            shift += min(1.0, t1.x * exp(-dot(d, d) / (2.0 * t1.y))) * t0.zw;  // touch_weight
+            shift += touch_weight(dot(d, d), t1.x, t1.y) * t0.zw;
         }
         if (!(clip.w > 0.0) || (shift.x == 0.0 && shift.y == 0.0)) continue;  // at or behind the eye
         vec4 dv = inv * vec4(shift * 2.0 / screen.xy, 0.0, 0.0);
@@ -378,8 +368,8 @@ vec3 kinematic_at() { return kinematic_path(a_kstart, a_ktarget, u_substep.w); }
 
 void main() {
 #ifdef DRAPE_PASS_MOVE
-    v_x = vec4(rotate(u_move_rot, a_x.xyz - u_move_pivot) + u_move_to, a_x.w);
-    v_d = u_move_keep_velocity > 0.0 ? vec4(rotate(u_move_rot, a_aux.xyz), a_aux.w) : vec4(0.0, 0.0, 0.0, a_x.w);
+    v_x = vec4(quat_rotate(u_move_rot, a_x.xyz - u_move_pivot) + u_move_to, a_x.w);
+    v_d = u_move_keep_velocity > 0.0 ? vec4(quat_rotate(u_move_rot, a_aux.xyz), a_aux.w) : vec4(0.0, 0.0, 0.0, a_x.w);
     return;
 #elif defined(DRAPE_PASS_STILL)
     gl_PointSize = 1.0;
@@ -409,10 +399,9 @@ void main() {
         int r = DRAPE_COLLIDER_VEC4 * k;
         vec4 c0 = u_shapes[r], c1 = u_shapes[r + 1], rot0 = u_shapes[r + 2], rot1 = u_shapes[r + 3];
         vec4 c4 = u_shapes[r + 4];
-        vec3 p0 = rotate(conjugate(rot0), si - c0.xyz);
-        vec3 p1 = rotate(conjugate(rot1), xi - c1.xyz);
         vec3 q;
-        if (collide_local(int(c4.w), c4.xyz, c0.w, c1.w, p0, p1, q)) xi = rotate(rot1, q) + c1.xyz;
+        if (collide_moving(int(c4.w), c4.xyz, c0.w, c1.w, c0.xyz, rot0, c1.xyz, rot1, si, xi, q))
+            xi = quat_rotate(rot1, q) + c1.xyz;
     }
     dd += xi - x_in;
 #endif

@@ -11,6 +11,16 @@
 #define DRAPE_INLINE
 #endif
 
+// Rotation of v by unit quaternion q = (x, y, z, w), as glm's quat * vec3 (glm/detail/type_quat.inl).
+DRAPE_INLINE vec3 quat_rotate(vec4 q, vec3 v) {
+    vec3 u = vec3(q.x, q.y, q.z);
+    vec3 uv = cross(u, v);
+    vec3 uuv = cross(u, uv);
+    return v + ((uv * q.w) + uuv) * 2.0f;
+}
+
+DRAPE_INLINE vec4 quat_conjugate(vec4 q) { return vec4(-q.x, -q.y, -q.z, q.w); }
+
 // Unit vector and length of d; zero vector for a zero-length spring (no direction, no force).
 DRAPE_INLINE vec3 direction(vec3 d, DRAPE_OUT(float) len) {
     len = sqrt(dot(d, d));
@@ -78,6 +88,12 @@ DRAPE_INLINE float pbd_coefficient(float wi, float wj, uint ci, uint cj, float k
 // displacement over the substep so far.
 DRAPE_INLINE float xpbd_delta(float constraint, float alpha, float lambda, float gamma, vec3 n, vec3 dij, float coef) {
     return (-constraint - alpha * lambda - gamma * dot(n, dij)) * coef;
+}
+
+// Touch drag weight (paper section IV, eq. 9, with the exponent's minus sign restored), clamped to 1 so
+// that no vertex moves further than the finger: min(1, A exp(-r^2 / (2 sigma))), r^2 and sigma in px^2.
+DRAPE_INLINE float touch_weight(float r2, float amplitude, float sigma) {
+    return min(1.0f, amplitude * exp(-r2 / (2.0f * sigma)));
 }
 
 // Tether (long-range attachment, Kim, Chentanez and Mueller 2012): particle x (inverse mass w) may be

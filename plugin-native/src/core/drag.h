@@ -1,6 +1,6 @@
-// Touch drag (paper section IV, eq. 9): screen-space Gaussian falloff and the projection /
-// unprojection between simulation space and screen pixels. Stateless; mirrored by the C# Core
-// touch-drag math and usable by tests as the reference.
+// Touch drag (paper section IV, eq. 9): the projection / unprojection between simulation space and
+// screen pixels (the screen-space falloff, touch_weight, is in shaders/substep.h, shared with GLES).
+// Stateless; mirrored by the C# Core touch-drag math and usable by tests as the reference.
 #pragma once
 
 #include <cmath>
@@ -19,13 +19,6 @@ constexpr float kTouchAmplitude = 200.0f;
 constexpr float kTouchSigma = 300.0f;  ///< px^2 (the paper's sigma divides r^2 directly)
 constexpr uint32_t kMaxTouches = 16;
 constexpr uint32_t kMaxGrabs = 16;
-
-/// Eq. 9 with the exponent's minus sign restored, clamped to 1 so that no vertex moves further
-/// than the finger: c = min(1, A exp(-r^2 / (2 sigma))), r^2 in px^2.
-inline float touch_weight(float r2, float amplitude, float sigma) {
-    const float c = amplitude * std::exp(-r2 / (2.0f * sigma));
-    return c < 1.0f ? c : 1.0f;
-}
 
 /// Simulation space <-> screen pixels for one drape_view, in double precision (the inverse of a
 /// perspective projection loses digits in float).

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "backend/cpu/glsl.h"  // touch_weight
 #include "core/cloth.h"
 #include "core/drag.h"
 
@@ -174,7 +175,7 @@ void Cloth::drag_cpu_copy(const drape_view& view, const drape_touch* touches, ui
         glm::dvec2 shift(0.0);
         for (uint32_t k = 0; k < count; ++k) {
             const glm::dvec2 d = px - glm::dvec2(touches[k].position[0], touches[k].position[1]);
-            const float c = touch_weight(float(glm::dot(d, d)), touches[k].amplitude, touches[k].sigma);
+            const float c = kernels::glsl::touch_weight(float(glm::dot(d, d)), touches[k].amplitude, touches[k].sigma);
             shift += double(c) * glm::dvec2(touches[k].motion[0], touches[k].motion[1]);
         }
         if (shift == glm::dvec2(0.0)) continue;

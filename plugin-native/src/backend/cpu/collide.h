@@ -42,15 +42,15 @@ inline void collide(const CollideShape* shapes, uint32_t shape_count, glm::vec4*
         const glm::vec3 si = x_in - glm::vec3(d[i]);
         for (uint32_t k = 0; k < shape_count; ++k) {
             const CollideShape& c = shapes[k];
-            const glm::vec3 p0 = glm::conjugate(c.rot0) * (si - c.pos0);
-            const glm::vec3 p1 = glm::conjugate(c.rot1) * (xi - c.pos1);
+            const glm::vec4 rot0(c.rot0.x, c.rot0.y, c.rot0.z, c.rot0.w), rot1(c.rot1.x, c.rot1.y, c.rot1.z, c.rot1.w);
             glm::vec3 q;
-            if (!glsl::collide_local(int(c.shape), c.size, c.margin, c.friction, p0, p1, q)) continue;
-            xi = c.rot1 * q + c.pos1;
+            if (!glsl::collide_moving(int(c.shape), c.size, c.margin, c.friction, c.pos0, rot0, c.pos1, rot1, si, xi, q))
+                continue;
+            xi = glsl::quat_rotate(rot1, q) + c.pos1;
             if (normal && c.friction == 0.0f) {
                 glm::vec3 n;
                 glsl::shape_distance(int(c.shape), c.size, q, n);
-                normal[i] = c.rot1 * n;
+                normal[i] = glsl::quat_rotate(rot1, n);
             }
         }
         if (xi == x_in) continue;

@@ -12,23 +12,27 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "drape/drape.h"  // the shape and group ids that shaders/layout.h defines for GLSL
 
 namespace drape::kernels::glsl {
 using glm::abs;
+using glm::cross;
 using glm::dot;
 using glm::ivec3;
 using glm::max;
 using glm::min;
 using glm::vec3;
+using glm::vec4;
+using std::exp;
 using std::sqrt;
 using uint = uint32_t;
 #define DRAPE_OUT(T) T&
 #define DRAPE_INLINE inline
+#include "shaders/substep.h"
 #include "shaders/collide_shape.h"
 #include "shaders/self_contact.h"
-#include "shaders/substep.h"
 #undef DRAPE_OUT
 #undef DRAPE_INLINE
 }  // namespace drape::kernels::glsl
