@@ -64,8 +64,16 @@ constexpr float kImplicitRefactorMove = 0.1f;
 constexpr float kDefaultH = 1.0f / 60.0f;
 /// Fraction of the explicit stability limit used when MASS_SPRING picks substeps itself.
 constexpr float kStabilitySafety = 0.9f;
-/// Jacobi coupling weight theta (kernels.h jacobi_scale); convergent for theta > 1/2.
+/// Jacobi coupling weight theta (shaders/substep.h jacobi_scale); convergent for theta > 1/2.
 constexpr float kJacobiCoupling = 0.6f;
+/// XPBD's per-group constants for a substep h (Macklin et al. 2016), as both backends hand them to
+/// the shared maths: compliance alpha~ = 1/(k h^2) and damping ratio gamma = kd/(k h) (eq. 26); 0
+/// where the group is off (k = 0).
+inline float xpbd_compliance(float k, float h) { return k > 0 ? 1.0f / (k * h * h) : 0.0f; }
+inline float xpbd_damping_ratio(float k, float kd, float h) { return k > 0 ? kd / (k * h) : 0.0f; }
+/// Verlet's acceleration factor of a substep (shaders/substep.h verlet_displacement): (h + h_prev)/2,
+/// or h/2 on a cloth's first step (exact for constant acceleration, accuracy.md R1).
+inline float verlet_accel_h(float h, float h_prev, bool first) { return first ? 0.5f * h : 0.5f * (h + h_prev); }
 /// MASS_SPRING's explicit stability bound for one particle (accuracy.md, "cruder" form, valid in
 /// any pose): w^2 <= 2 w_i sum_j k_ij; with the dashpots' c = 2 w_i sum kd, Verlet needs
 /// h^2 w^2 + 2 h c <= 4, times kStabilitySafety^2. The largest such substep h, s (INFINITY when

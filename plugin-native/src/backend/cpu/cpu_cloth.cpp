@@ -163,8 +163,8 @@ void CpuCloth::begin(float dt) {
         const float k = params_.stiffness[g];
         c.groups.stiffness[g] = k;
         c.groups.active[g] = k > 0;
-        c.groups.compliance[g] = k > 0 ? 1.0f / (k * h * h) : 0.0f;
-        c.groups.damping_ratio[g] = k > 0 ? params_.damping / (k * h) : 0.0f;
+        c.groups.compliance[g] = xpbd_compliance(k, h);
+        c.groups.damping_ratio[g] = xpbd_damping_ratio(k, params_.damping, h);
     }
     c.gravity = glm::vec3(params_.gravity[0], params_.gravity[1], params_.gravity[2]);
     c.wind = glm::vec3(params_.wind[0], params_.wind[1], params_.wind[2]);
@@ -192,7 +192,7 @@ void CpuCloth::predict(float along) {
     kernels::SubstepContext& c = ctx_;
     c.h_prev = h_prev_;
     c.h_ratio = h_ / h_prev_;
-    c.accel_h = fresh_ ? 0.5f * h_ : 0.5f * (h_ + h_prev_);
+    c.accel_h = verlet_accel_h(h_, h_prev_, fresh_);
     if (params_.model != DRAPE_MODEL_PBD && params_.model != DRAPE_MODEL_XPBD) return;
     Particle* cur = x_.data();
     Particle* disp = d_.data();

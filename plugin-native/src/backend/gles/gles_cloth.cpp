@@ -960,10 +960,10 @@ void GlesCloth::use_uniforms(float h) {
     u.jacobi_coupling = kJacobiCoupling;
     u.tex_width = GLint(kTexWidth);
     for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) {
-        const float k = params_.stiffness[g];  // as CpuCloth::begin computes them
+        const float k = params_.stiffness[g];
         u.stiffness[g] = k;
-        u.compliance[g] = k > 0 ? 1.0f / (k * h * h) : 0.0f;
-        u.damping_ratio[g] = k > 0 ? params_.damping / (k * h) : 0.0f;
+        u.compliance[g] = xpbd_compliance(k, h);
+        u.damping_ratio[g] = xpbd_damping_ratio(k, params_.damping, h);
     }
     for (int k = 0; k < 3; ++k) {
         u.gravity[k] = params_.gravity[k];
@@ -1219,8 +1219,7 @@ Result GlesCloth::gpu_step(float dt) {
     int& spare2 = g_[3];
     for (uint32_t s = 0; s < substeps; ++s) {
         // Computed on the CPU exactly as CpuCloth::predict does, so the shader sees the same bits.
-        const glm::vec4 sub(1.0f / h_prev_, h / h_prev_, fresh_ ? 0.5f * h : 0.5f * (h + h_prev_),
-                            float(s + 1) / float(substeps));
+        const glm::vec4 sub(1.0f / h_prev_, h / h_prev_, verlet_accel_h(h, h_prev_, fresh_), float(s + 1) / float(substeps));
         if (model == DRAPE_MODEL_MASS_SPRING) {
             // x -> spare, d -> spare2 (kinematic particles placed in the same pass).
             run_pass(*p_first, cur, disp, spare, spare2, false, sub);
