@@ -63,12 +63,10 @@ ENUMS = [
         ("DRAPE_MODEL_IMPLICIT", 3, "implicit Euler on the same springs (N/m): exact force residual, solved by "
                                     "conjugate gradients on a prefactored sparse Cholesky (CPU) or by block-Jacobi "
                                     "passes with Chebyshev acceleration (GLES); rests exactly at the springs' "
-                                    "equilibrium whatever the budget (GLES settles more slowly and stretches more "
-                                    "in motion)"),
-        ("DRAPE_MODEL_AUTO", 4, "the default: IMPLICIT on CPU and CPU_THREADED, which rests at the springs' "
-                                "equilibrium; XPBD on GLES (GLES IMPLICIT settles too slowly in motion to be the "
-                                "default yet). A cloth stores the model it resolved to (drape_cloth_get_params "
-                                "reports it)"),
+                                    "equilibrium whatever the budget (GLES stretches more in motion, and lags behind "
+                                    "implicit Euler in motion when stiff)"),
+        ("DRAPE_MODEL_AUTO", 4, "the default: IMPLICIT on every backend, which rests at the springs' equilibrium. "
+                                "A cloth stores the model it resolved to (drape_cloth_get_params reports it)"),
     ]),
     enum("drape_group", "Group", "Spring / constraint groups of the 12-neighbour stencil (grid) or of a mesh.",
          cs_prefix="DRAPE_GROUP_", values=[
@@ -147,13 +145,13 @@ STRUCTS = [
                field("air_drag", "f32", "a += air_drag*(wind - v)", unit="1/s", default=0.1, range=(0, 1000)),
                field("substeps", "u32",
                      "per step; 0 = automatic (MASS_SPRING: from the stability bound, see drape_estimate_stability; "
-                     "PBD, XPBD: 16 \"small steps\"; IMPLICIT: 2, on GLES one per 1/120 s of the step; on CPU backends more "
+                     "PBD, XPBD: 16 \"small steps\"; IMPLICIT: 2, on GLES one per 1/960 s of the step; on CPU backends more "
                      "while a collider near the cloth moves over half its size per substep, or with self-collision a "
                      "particle over a quarter of the thickness). Automatic or given, "
                      "at most DRAPE_MAX_SUBSTEPS",
                      default=0, range=(0, "DRAPE_MAX_SUBSTEPS")),
                field("iterations", "u32", "solver iterations per substep (PBD, XPBD, IMPLICIT; IMPLICIT on the CPU: at most, "
-                     "fewer once converged); 0 = automatic (IMPLICIT: 4, on GLES 8; PBD and XPBD: 1)", default=0, range=(0, "DRAPE_MAX_ITERATIONS")),
+                     "fewer once converged); 0 = automatic (IMPLICIT: 4, on GLES 3; PBD and XPBD: 1)", default=0, range=(0, "DRAPE_MAX_ITERATIONS")),
                field("max_stretch", "f32",
                      "tethers (long-range attachments, Kim et al. 2012): every particle stays within "
                      "(1 + max_stretch) x its rest distance along the cloth to the nearest pinned particle. "

@@ -122,13 +122,12 @@ namespace Drape
         [Tooltip("Auto: the GPU (OpenGL ES 3) where it can run this cloth, else the CPU (threaded for large cloths). " +
                  "The inspector says which one runs and why.")]
         [SerializeField, FormerlySerializedAs("Backend")] private DrapeBackendChoice _backend = DrapeBackendChoice.Auto;
-        [Tooltip("Auto (default): the model that rests where its springs balance gravity on the backend that runs " +
-                 "the cloth: implicit on the CPU, XPBD on the GPU. " +
+        [Tooltip("Auto (default): the model that rests where its springs balance gravity: implicit, on the CPU and the GPU. " +
                  "XPBD: stiffness in N/m, independent of step and iterations; rests softer than its springs. " +
                  "PBD: the paper's position-based model, stiffness is a fraction per iteration (0..1). " +
                  "Mass-spring: the paper's explicit springs; needs substeps when stiff. " +
                  "Implicit: implicit Euler on the same springs (N/m), rests exactly at their equilibrium, stable at any " +
-                 "stiffness (the GPU settles more slowly and stretches more in motion than the CPU).")]
+                 "stiffness (the GPU stretches more in motion than the CPU, and lags more when stiff).")]
         [SerializeField, FormerlySerializedAs("Model")] private Model _model = Model.Auto;
         [Tooltip("Mass-spring, XPBD and implicit: stretch springs (grid neighbours, mesh edges), N/m per spring.")]
         [SerializeField, FormerlySerializedAs("StructuralStiffness")] private float _structuralStiffness = 2000f;
@@ -150,9 +149,9 @@ namespace Drape
         [SerializeField, FormerlySerializedAs("Wind")] private Vector3 _wind = Vector3.zero;
         [Tooltip("How fast the cloth takes on the wind's velocity, 1/s.")]
         [SerializeField, FormerlySerializedAs("AirDrag"), Range(0f, 10f)] private float _airDrag = 0.1f;
-        [Tooltip("Substeps per step. 0 = automatic (mass-spring: from the stability bound; PBD/XPBD: 16).")]
+        [Tooltip("Substeps per step. 0 = automatic (mass-spring: from the stability bound; PBD/XPBD: 16; implicit: 2, on the GPU one per 1/960 s).")]
         [SerializeField, FormerlySerializedAs("Substeps"), Range(0, 64)] private int _substeps = 0;
-        [Tooltip("Solver iterations per substep (PBD, XPBD, implicit). 0 = automatic (implicit: 4, on the GPU 8; PBD, XPBD: 1). " +
+        [Tooltip("Solver iterations per substep (PBD, XPBD, implicit). 0 = automatic (implicit: 4, on the GPU 3; PBD, XPBD: 1). " +
                  "More substeps beat more iterations at equal cost.")]
         [SerializeField, FormerlySerializedAs("Iterations"), Range(0, 32)] private int _iterations = 0;
         [Tooltip("Tethers: no vertex gets further than (1 + this) times its rest distance along the cloth from " +

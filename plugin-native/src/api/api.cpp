@@ -527,6 +527,8 @@ drape_status drape_cloth_set_params(drape_cloth* cloth, const drape_params* para
     if (status != DRAPE_OK) return fail(status, problem);
     if (params->model == DRAPE_MODEL_IMPLICIT)
         if (drape_status s = check_supports(as_cloth(cloth), Feature::ImplicitModel)) return s;
+    if (params->model == DRAPE_MODEL_XPBD)
+        if (drape_status s = check_supports(as_cloth(cloth), Feature::XpbdModel)) return s;
     const drape_params p = *params;
     return guarded([&] { return apply_edit(as_cloth(cloth), Access::NoState, [p](Cloth& c) { c.set_params(p); }); });
 }
@@ -711,7 +713,7 @@ drape_status drape_estimate_stability(const drape_cloth_desc* desc, const drape_
             CookResult r = cook_mesh(*mesh, desc->total_mass, topo);
             if (r.status != DRAPE_OK) return fail(r.status, r.message);
         }
-        const StabilityEstimate e = estimate_stability(topo, resolve_model(*params, drape_backend(desc->backend)), dt);
+        const StabilityEstimate e = estimate_stability(topo, resolve_model(*params), dt);
         drape_stability out = abi::Layout<drape_stability>::defaults();
         out.substeps = e.substeps;
         out.stable_substeps = e.stable_substeps;

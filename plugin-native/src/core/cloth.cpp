@@ -26,7 +26,7 @@ Description::Description(Topology cooked, uint32_t id_in_world) : id(id_in_world
 
 Cloth::Cloth(World& world, drape_backend backend, std::shared_ptr<const Description> description)
     : world_(world), backend_(backend), desc_(std::move(description)), topo_(desc_->topology),
-      params_(resolve_model(default_params(), backend)) {
+      params_(resolve_model(default_params())) {
     const uint32_t n = topo_.particle_count;
     base_inverse_mass_.resize(n);
     for (uint32_t i = 0; i < n; ++i) base_inverse_mass_[i] = 1.0f / topo_.mass[i];
@@ -114,7 +114,7 @@ void Cloth::rebuild_tethers() {
 }
 
 void Cloth::set_params(const drape_params& given) {
-    const drape_params p = resolve_model(given, backend_);
+    const drape_params p = resolve_model(given);
     if (std::memcmp(&p, &params_, sizeof p) != 0) wake();
     params_ = p;
     refresh_derived();

@@ -33,7 +33,7 @@ struct Result {
 };
 
 /// What a cloth can do beyond the core set (a backend refuses the rest with a clear Result).
-enum class Feature { ImplicitModel, Sleep, Grab, Owner, SelfCollision };
+enum class Feature { ImplicitModel, XpbdModel, Sleep, Grab, Owner, SelfCollision };
 
 /// A cloth: what every backend shares (cooked topology, parameters, masses, pins, colliders,
 /// interaction settings and the CPU copy of the state, with the setters that change them) and the

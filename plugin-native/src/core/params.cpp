@@ -10,8 +10,8 @@ namespace drape {
 
 drape_params default_params() { return abi::Layout<drape_params>::defaults(); }
 
-drape_params resolve_model(drape_params p, drape_backend backend) {
-    if (p.model == DRAPE_MODEL_AUTO) p.model = backend == DRAPE_BACKEND_GLES ? DRAPE_MODEL_XPBD : DRAPE_MODEL_IMPLICIT;
+drape_params resolve_model(drape_params p) {
+    if (p.model == DRAPE_MODEL_AUTO) p.model = DRAPE_MODEL_IMPLICIT;
     return p;
 }
 

@@ -57,12 +57,11 @@ namespace Drape.Core
         Xpbd = 2,
         /// <summary>Implicit Euler on the same springs (N/m): exact force residual, solved by conjugate
         /// gradients on a prefactored sparse Cholesky (CPU) or by block-Jacobi passes with Chebyshev
-        /// acceleration (GLES); rests exactly at the springs' equilibrium whatever the budget (GLES settles
-        /// more slowly and stretches more in motion).</summary>
+        /// acceleration (GLES); rests exactly at the springs' equilibrium whatever the budget (GLES stretches
+        /// more in motion, and lags behind implicit Euler in motion when stiff).</summary>
         Implicit = 3,
-        /// <summary>The default: IMPLICIT on CPU and CPU_THREADED, which rests at the springs' equilibrium;
-        /// XPBD on GLES (GLES IMPLICIT settles too slowly in motion to be the default yet). A cloth stores
-        /// the model it resolved to (drape_cloth_get_params reports it).</summary>
+        /// <summary>The default: IMPLICIT on every backend, which rests at the springs' equilibrium. A cloth
+        /// stores the model it resolved to (drape_cloth_get_params reports it).</summary>
         Auto = 4,
     }
 

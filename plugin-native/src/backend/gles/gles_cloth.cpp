@@ -502,9 +502,6 @@ Result GlesCloth::ensure_gl() {
                               : "GLES cloth: " + why};
     if (Result r = check_limits(); !r.ok()) return r;
     free_graves();
-    if ((topo_.nbr.slots + 3) / 4 > kMaxLambdaVec4 && params_.model == DRAPE_MODEL_XPBD)
-        return {DRAPE_ERROR_INVALID_ARGUMENT, "GLES XPBD supports up to 32 neighbours per vertex; this mesh has " +
-                                                  std::to_string(topo_.nbr.slots)};
     GLint max_size = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
     const uint32_t n = topo_.particle_count;
@@ -1543,6 +1540,11 @@ uint32_t GlesCloth::iterations_for() const {
 Result GlesCloth::supports(Feature feature) const {
     switch (feature) {
     case Feature::ImplicitModel: return {};  // block Jacobi + Chebyshev passes (sim.vert.glsl)
+    case Feature::XpbdModel:  // its lambdas ride in at most kMaxLambdaVec4 vec4 attributes
+        if ((topo_.nbr.slots + 3) / 4 > kMaxLambdaVec4)
+            return {DRAPE_ERROR_INVALID_ARGUMENT, "GLES XPBD supports up to 32 neighbours per vertex; this mesh has " +
+                                                      std::to_string(topo_.nbr.slots)};
+        return {};
     case Feature::Grab: return {};  // picked and held on the GPU (gles_grab.cpp)
     case Feature::Owner: return {};  // moved on the GPU (move_gpu_state)
     case Feature::Sleep: return {};  // checked on the GPU (issue_still, poll_still)
