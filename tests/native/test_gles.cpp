@@ -649,7 +649,8 @@ INSTANTIATE_TEST_SUITE_P(R13, GlesImplicitRest,
 // positions per row) that float rounding sets its rest state's vertex error: the lowest point is
 // within 0.5 %, the worst vertex wanders between 4.2e-3 and 6.0e-3 of the displacement, frozen
 // from 2 s on at budgets 16 x 3, 2 x 8, 1 x 8, 1 x 12 and 1 x 16 and Chebyshev floors 0.25 and 0.1
-// alike (the CPU's IMPLICIT: 4.9e-3 at 2 x 4 and 1 x 4). Held to 1 % per vertex.
+// alike (the CPU's IMPLICIT: 4.9e-3 at 2 x 4 and 1 x 4). Held to what float positions resolve per
+// vertex (RestError::floor, 0.88 % here).
 TEST_F(GlesImplicit, StiffCurtainRestsAtTheFloatFloor) {
     const RestScene s{Scene::Curtain, 33, 50};
     RestSetup setup = make_scene(s, DRAPE_MODEL_IMPLICIT, DRAPE_BACKEND_GLES);
@@ -657,9 +658,10 @@ TEST_F(GlesImplicit, StiffCurtainRestsAtTheFloatFloor) {
     const std::vector<double> ref = newton_reference(setup);
     run_ten_seconds(setup.cloth);
     const RestError e = rest_error(positions(setup.cloth), ref, setup.rest);
-    std::printf("[ measured ] GLES IMPLICIT curtain 33^2, 1e5 N/m: vertex error %.2e, lowest point %.2e\n", e.vertex,
-                e.lowest);
-    EXPECT_LT(e.vertex, 1e-2);
+    std::printf("[ measured ] GLES IMPLICIT curtain 33^2, 1e5 N/m: vertex error %.2e (float floor %.2e), lowest point "
+                "%.2e\n",
+                e.vertex, e.floor, e.lowest);
+    EXPECT_LT(e.vertex, e.floor);
     EXPECT_LT(e.lowest, 5e-3);
 }
 

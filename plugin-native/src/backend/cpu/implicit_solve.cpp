@@ -8,6 +8,7 @@
 #include <glm/common.hpp>
 #include <glm/exponential.hpp>
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 #include <numeric>
 
 namespace drape {
@@ -179,6 +180,7 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     y_.resize(m);
     sep_sum_.resize(size_t(sep_count) * kParts);
     for (std::vector<Particle>* v : {&r_, &r_prev_, &z_, &p_}) v->assign(n, Particle(0.0f));
+    block_inv_.assign(n, glm::mat3(0.0f));
     in_contact_.reserve(n);
     block_sum_.assign((n + kBlock - 1) / kBlock, 0.0);
 }
@@ -329,7 +331,8 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         return sum;
     });
     const double converged_release = double(tolerance) * double(tolerance) * load;
-    // Preconditioned nonlinear conjugate gradients: the first direction is z = A^-1 r, then
+    block_hessian(c, start, iterate, pool);
+    // Preconditioned nonlinear conjugate gradients: the first direction is z = P^-1 r, then
     // Polak-Ribiere (clamped at 0, which restarts on z), each with the step length of one Newton
     // step along the direction, alpha = r.p / p.Hp (Shewchuk 1994, "An introduction to the
     // conjugate gradient method without the agonizing pain", B5). Phi must not rise: by the
@@ -352,15 +355,6 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         const Dots dots = precondition(r_.data(), r_prev_.data(), first ? p_.data() : z_.data(), pool);
         ++it;
         if (!(dots.rz > 0)) break;  // r = 0: at the minimum
-        if (max_iterations == 1 && !tension_ && h_ < c.h * (1.0f + kImplicitRefactor)) {
-            // A single iteration needs no step length: the constant A bounds the (clamped) Hessian,
-            // so the plain step d += A^-1 r lowers Phi, and it solves the linear part (rigid motion,
-            // stretch along the load) at once. Not when A was built for a longer substep (a fast
-            // collider added substeps): its mass term is then smaller than the Hessian's; nor with
-            // the tension weights, whose diagonal blocks do not bound it.
-            move(p_, 1.0f);
-            break;
-        }
         double rp = dots.rz;
         if (!first) {
             double beta = restart ? 0.0 : std::max(0.0, (dots.rz - dots.z_r_prev) / rz_prev);
@@ -383,6 +377,33 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         rp_prev = rp;
     }
     return it;
+}
+
+void ImplicitSolve::block_hessian(const kernels::SubstepContext& c, const Particle* start, const Particle* disp,
+                                  ThreadPool* pool) {
+    // Per free particle the inverse of its 3x3 block of H (implicit_curvature's clamped Hessian) at
+    // the first iterate: I/(w h^2) + sum over its springs (k + kd/h) n n^T + T (I - n n^T).
+    const float kd_h = c.damping / c.h;
+    const float inv_h2 = 1.0f / (c.h * c.h);
+    over_blocks(pool, [&](uint32_t b, uint32_t e) {
+        for (uint32_t i = b; i < e; ++i) {
+            const float wi = disp[i].w;
+            if (wi == 0.0f) {
+                block_inv_[i] = glm::mat3(0.0f);
+                continue;
+            }
+            const glm::vec3 xi = glm::vec3(start[i]) + glm::vec3(disp[i]);
+            glm::mat3 block(inv_h2 / wi);
+            kernels::for_active_springs(c, i, [&](uint32_t j, float rest, float k) {
+                float len;
+                const glm::vec3 n = kernels::direction(xi - (glm::vec3(start[j]) + glm::vec3(disp[j])), &len);
+                const float across = len > 0.0f ? k * std::max(0.0f, 1.0f - rest / len) : 0.0f;
+                block += (k + kd_h - across) * glm::outerProduct(n, n) + glm::mat3(across);
+            });
+            block_inv_[i] = glm::inverse(block);
+        }
+        return 0.0;
+    });
 }
 
 ImplicitSolve::Dots ImplicitSolve::precondition(const Particle* r, const Particle* r_prev, Particle* z,
@@ -470,7 +491,7 @@ ImplicitSolve::Dots ImplicitSolve::back_substitute(uint32_t first, uint32_t last
         y_[row] = v;
         for (uint32_t k = row_start_[row]; k < row_start_[row + 1]; ++k) y_[row_col_[k]] -= value[k] * v;
         const uint32_t i = particle_[row];
-        glm::vec3 zi = v;
+        glm::vec3 zi = v + block_inv_[i] * glm::vec3(r[i]);  // A^-1 r + D^-1 r
         if (normal_) zi -= std::min(0.0f, glm::dot(v, normal_[i])) * normal_[i];  // no step inwards at a contact
         z[i] = Particle(zi, 0.0f);
         dots.rz += double(glm::dot(zi, glm::vec3(r[i])));

@@ -1,17 +1,23 @@
 // The IMPLICIT model's solve of one substep (CpuCloth::implicit_substep): minimise Phi
 // (kernels::implicit_residual) by nonlinear preconditioned conjugate gradients on the force
-// residual r = -grad Phi. The preconditioner is A^-1, A = M/h^2 + sum_springs (k + kd/h)
-// (e_i - e_j)(e_i - e_j)^T over the free particles (kinematic ones enter only through the
-// residual; Projective Dynamics' constant matrix, Bouaziz et al. 2014), factored once by a sparse
-// Cholesky. A alone (d += A^-1 r) solves the linear part (rigid motion, the stretch of a hanging
-// cloth) in one iteration but charges a taut sheet's transverse sag the full k of each spring
-// where the true stiffness is k times the strain, so that mode crept (a 17^2 sheet at 1e5 N/m was
-// 7.9 % off after 10 s); conjugate directions with the step length from the spring Hessian
-// (kernels::implicit_curvature) take it in a few iterations, but a few iterations barely touch that
-// sag's higher modes and the sheet's transverse waves, which kept the fall's energy and swung the
-// sag for good. So a cloth that has come to rest elsewhere than its factor was built is refactored
-// there with its springs' tension (start_refactor): per axis the diagonal of each spring's Hessian
-// block.
+// residual r = -grad Phi. The preconditioner is additive, P^-1 = A^-1 + D^-1:
+// - A = M/h^2 + sum_springs (k + kd/h) (e_i - e_j)(e_i - e_j)^T over the free particles (kinematic
+//   ones enter only through the residual; Projective Dynamics' constant matrix, Bouaziz et al.
+//   2014), factored once by a sparse Cholesky. It is right for the stiff smooth modes (rigid
+//   motion, the stretch of a hanging cloth) but charges every spring's k in all directions, where
+//   the true (clamped) Hessian H charges k along the spring and only the tension T = k max(0,
+//   1 - L/l) across it: modes that bend or swing the cloth are nearly mass-dominated in H and
+//   stiff in A, so P = A alone left them to CG, ~sqrt(k/T) iterations. With a few, the default
+//   fell in slow motion (bench part 'fall', 17^2 sheet from two corners, fall 0.74 / 0.28 as far
+//   as MASS_SPRING at 2e4 / 1e5 N/m), and a taut sheet's sag crept.
+// - D: per free particle its 3x3 block of H at the solve's first iterate (block_hessian), M/h^2
+//   plus per spring (k + kd/h) n n^T + T (I - n n^T): ~h^2/m where A^-1 is ~0 (motion across the
+//   springs), ~0 where A^-1 is right (along stiff springs). Fall now 0.97 / 0.76.
+// What neither reaches: a curved stiff sheet's bending, whose motion across the springs needs a
+// coordinated motion along them (per particle D cannot, and A charges it k); CG takes those.
+// Step lengths come from H (kernels::implicit_curvature). A cloth that has come to rest elsewhere
+// than its factor was built is also refactored there with its springs' tension (start_refactor):
+// per axis the diagonal of each spring's Hessian block.
 // The fixed point is r = 0, the exact equilibrium, whatever the preconditioner.
 //
 // The factor's rows are ordered by a one-level nested dissection: two parts that share no spring,
@@ -22,6 +28,7 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 #include <vector>
 
@@ -89,7 +96,9 @@ class ImplicitSolve {
     struct Dots {
         double rz = 0, z_r_prev = 0;  ///< r.z and z.r_prev
     };
-    /// z = A^-1 r on the free particles (z stays 0 on kinematic ones), with r.z and z.r_prev.
+    /// block_inv_ at start + disp, for this solve.
+    void block_hessian(const kernels::SubstepContext& c, const Particle* start, const Particle* disp, ThreadPool* pool);
+    /// z = A^-1 r + D^-1 r on the free particles (z stays 0 on kinematic ones), with r.z and z.r_prev.
     Dots precondition(const Particle* r, const Particle* r_prev, Particle* z, ThreadPool* pool);
     // The substitutions with L's values (float: the constant factor's, one for all axes; glm::vec3:
     // the tension factor's).
@@ -138,6 +147,7 @@ class ImplicitSolve {
     // Conjugate gradients, one record per particle: residual, the previous one, preconditioned
     // residual and direction.
     std::vector<Particle> r_, r_prev_, z_, p_;
+    std::vector<glm::mat3> block_inv_;  ///< per particle the inverse of its block of H (block_hessian)
     std::vector<uint32_t> in_contact_;       ///< particles with a contact normal in this solve
     const glm::vec3* normal_ = nullptr;  ///< this solve's contact normals, null if none
 };
