@@ -285,16 +285,19 @@ TEST(SelfCollision, BadInputIsRefusedAndChangesNothing) {
 #ifdef DRAPE_TEST_GLES
 class SelfCollisionGles : public WithHeadlessGles<> {};
 
-// GLES (its default model is XPBD): the same fold and the same criterion as on the CPU (whose test
-// has the control without self-collision and the frictional case; MatchesCpu below has friction).
+// GLES, XPBD and the default (IMPLICIT): the same fold and the same criterion as on the CPU (whose
+// test has the control without self-collision and the frictional case; MatchesCpu below has friction).
 TEST_F(SelfCollisionGles, FoldingClothDoesNotPassThroughItself) {
-    const uint32_t cols = 16;
-    const FoldRun on = run_fold(true, cols, 180, DRAPE_BACKEND_GLES);
-    print_fold("GLES with", on, cols);
-    EXPECT_EQ(on.worst.wrong_side, 0u);
-    EXPECT_EQ(on.worst.close_pairs, 0u);
-    EXPECT_GE(on.worst.min_distance, 0.5f * kThickness);
-    EXPECT_LT(on.max_strain, 0.2f);
+    for (drape_model model : {DRAPE_MODEL_XPBD, DRAPE_MODEL_AUTO}) {
+        SCOPED_TRACE(model == DRAPE_MODEL_XPBD ? "XPBD" : "default");
+        const uint32_t cols = 16;
+        const FoldRun on = run_fold(true, cols, 180, DRAPE_BACKEND_GLES, 0.0f, model);
+        print_fold(model == DRAPE_MODEL_XPBD ? "GLES XPBD with" : "GLES default with", on, cols);
+        EXPECT_EQ(on.worst.wrong_side, 0u);
+        EXPECT_EQ(on.worst.close_pairs, 0u);
+        EXPECT_GE(on.worst.min_distance, 0.5f * kThickness);
+        EXPECT_LT(on.max_strain, 0.2f);
+    }
 }
 
 static float max_distance(const std::vector<float>& a, const std::vector<float>& b) {
