@@ -368,7 +368,7 @@ vec3 kinematic_at() { return kinematic_path(a_kstart, a_ktarget, u_substep.w); }
 
 void main() {
 #ifdef DRAPE_PASS_MOVE
-    v_x = vec4(quat_rotate(u_move_rot, a_x.xyz - u_move_pivot) + u_move_to, a_x.w);
+    v_x = vec4(rigid_move(u_move_rot, u_move_pivot, u_move_to, a_x.xyz), a_x.w);
     v_d = u_move_keep_velocity > 0.0 ? vec4(quat_rotate(u_move_rot, a_aux.xyz), a_aux.w) : vec4(0.0, 0.0, 0.0, a_x.w);
     return;
 #elif defined(DRAPE_PASS_STILL)

@@ -21,6 +21,10 @@ DRAPE_INLINE vec3 quat_rotate(vec4 q, vec3 v) {
 
 DRAPE_INLINE vec4 quat_conjugate(vec4 q) { return vec4(-q.x, -q.y, -q.z, q.w); }
 
+// A rigid motion of the whole state (owner transform, re-centring: core/interaction.h RigidMove):
+// position x goes to rot * (x - pivot) + to (a displacement turns with quat_rotate(rot, d)).
+DRAPE_INLINE vec3 rigid_move(vec4 rot, vec3 pivot, vec3 to, vec3 x) { return quat_rotate(rot, x - pivot) + to; }
+
 // Unit vector and length of d; zero vector for a zero-length spring (no direction, no force).
 DRAPE_INLINE vec3 direction(vec3 d, DRAPE_OUT(float) len) {
     len = sqrt(dot(d, d));

@@ -293,7 +293,7 @@ void Cloth::set_owner(const drape_owner& o) {
 void Cloth::move_state(const RigidMove& m) {
     for (uint32_t i = 0; i < topo_.particle_count; ++i) {
         x_[i] = Particle(m.apply(glm::vec3(x_[i])), x_[i].w);
-        d_[i] = m.keep_velocity ? Particle(m.rot * glm::vec3(d_[i]), d_[i].w) : Particle(glm::vec3(0.0f), x_[i].w);
+        d_[i] = m.keep_velocity ? Particle(kernels::glsl::quat_rotate(m.rot_xyzw(), glm::vec3(d_[i])), d_[i].w) : Particle(glm::vec3(0.0f), x_[i].w);
     }
 }
 

@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "backend/cpu/glsl.h"  // rigid_move (shaders/substep.h)
 #include "drape/drape.h"
 #include "shaders/layout.h"
 
@@ -48,7 +49,8 @@ struct RigidMove {
     glm::vec3 pivot{0.0f};
     glm::vec3 to{0.0f};
     bool keep_velocity = true;
-    glm::vec3 apply(const glm::vec3& x) const { return rot * (x - pivot) + to; }
+    glm::vec4 rot_xyzw() const { return glm::vec4(rot.x, rot.y, rot.z, rot.w); }  ///< as the shaders take it
+    glm::vec3 apply(const glm::vec3& x) const { return kernels::glsl::rigid_move(rot_xyzw(), pivot, to, x); }
 };
 
 struct Grab {

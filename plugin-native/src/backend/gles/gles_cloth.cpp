@@ -996,7 +996,7 @@ void GlesCloth::move_gpu_state(Program& p, const RigidMove& m) {
     int& cur = g_[0];
     int& disp = g_[1];
     use_program(p, -1, -1);  // own records only: no texture
-    const glm::vec4 rot(m.rot.x, m.rot.y, m.rot.z, m.rot.w);
+    const glm::vec4 rot = m.rot_xyzw();
     glUniform4fv(p.u[uMoveRot], 1, &rot.x);
     glUniform3fv(p.u[uMovePivot], 1, &m.pivot.x);
     glUniform3fv(p.u[uMoveTo], 1, &m.to.x);
