@@ -67,8 +67,8 @@ TEST(RestState, DefaultModelRestsAtTheNewtonEquilibriumOnCpuBackends) {
 // its springs' tension alone, k times the strain. With the constant matrix (k on every axis) the
 // default's few iterations left that sag and the sheet's transverse waves nearly untouched, so they
 // kept the energy of the fall and swung the sag by 0.1-1 % of the displacement for good (65^2:
-// 0.1-0.87 % over steps 600-1800). Once still, the cloth is refactored with its springs' tension
-// (ImplicitSolve::refactor): within 0.5 % at every vertex, and still.
+// 0.1-0.87 % over steps 600-1800). The preconditioner's Hessian blocks (implicit_solve.h, D) answer
+// those modes: within 0.5 % at every vertex, and still, with no refactor at rest.
 TEST(RestState, DefaultRestsOnTautSheetsWithoutCreeping) {
     const RestScene scenes[] = {{Scene::Sheet, 33, 1}, {Scene::Sheet, 65, 1}, {Scene::Sheet, 33, 0.05f},
                                 {Scene::Sheet, 33, 50}, {Scene::Curtain, 65, 1}};
@@ -95,8 +95,8 @@ TEST(RestState, DefaultRestsOnTautSheetsWithoutCreeping) {
 // A taut sheet with stiff springs (17^2 pinned on two edges, 1e5 N/m) sags transversely to every
 // spring, where its stiffness is only k times the strain: the constant matrix charges that mode the
 // full k, and its fixed-point iteration alone was still 7.9 % off after 10 s at 4 x 4. Conjugate
-// directions brought it to 0.5-1.7 %, wandering; refactored with the tension once still it is within
-// 0.5 % after 10 s at the default budget (measured 9e-5).
+// directions brought it to 0.5-1.7 %, wandering; with the Hessian's particle blocks added to the
+// preconditioner it is within 0.5 % after 10 s at the default budget.
 TEST(RestState, ImplicitTautStiffSheetSettles) {
     const RestScene s{Scene::Sheet, 17, 50};
     RestSetup setup = make_scene(s, DRAPE_MODEL_IMPLICIT, DRAPE_BACKEND_CPU);
@@ -124,8 +124,8 @@ TEST(RestState, XpbdDefaultBudgetRestsVisiblySofter) {
 }
 
 // CPU_THREADED splits the residual over the pool and runs the two halves of the nested-dissection
-// substitution on two threads, with the same order and arithmetic as CPU; both refactor with the
-// tension at the same step (the sheet, once still).
+// substitution on two threads, with the same order and arithmetic as CPU (the Hessian blocks are
+// per particle).
 TEST(RestState, ImplicitThreadedEqualsSingleThreadedBitForBit) {
     // 4225 particles: the passes really split
     const std::pair<RestScene, int> runs[] = {{{Scene::Curtain, 65, 1}, 30}, {{Scene::Sheet, 65, 1}, 240}};

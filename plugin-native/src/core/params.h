@@ -53,13 +53,6 @@ constexpr float kMaxAutoSubstepImplicitGles = 1.0f / 960.0f;
 /// IMPLICIT: relative change of the substep beyond which its matrix is refactored (any matrix
 /// gives the exact rest state; a stale one only converges more slowly).
 constexpr float kImplicitRefactor = 0.25f;
-/// IMPLICIT on CPU: a cloth counts as still when no particle moved more than this share of its
-/// shortest spring in a step, and is refactored with its springs' tension when, still for
-/// kImplicitStillSteps steps, it is more than kImplicitRefactorMove shortest springs from where its
-/// factor was built.
-constexpr float kImplicitStill = 0.01f;
-constexpr uint32_t kImplicitStillSteps = 10;
-constexpr float kImplicitRefactorMove = 0.1f;
 /// Frame step assumed before the first step (for work done ahead of it), s.
 constexpr float kDefaultH = 1.0f / 60.0f;
 /// Fraction of the explicit stability limit used when MASS_SPRING picks substeps itself.

@@ -70,26 +70,6 @@ void CpuCloth::factor_implicit(float h) {
     implicit_.factor(topo_, params_, x_.data(), h);
 }
 
-void CpuCloth::refactor_implicit_when_still() {
-    // A cloth that has been still for kImplicitStillFrames steps (not a turning point of a swing),
-    // away from where its factor was built, and whose last step needed more than one iteration a
-    // substep is refactored where it is with its springs' tension (ImplicitSolve::start_refactor;
-    // no allocation). Not in motion: the tension and the directions change every frame. Decided
-    // from the state alone, so CPU_THREADED refactors when CPU does.
-    if (implicit_.refactoring()) {
-        implicit_.continue_refactor(topo_, params_);
-        return;
-    }
-    const float scale = implicit_.spring_scale();
-    float motion = 0;  // largest displacement of the last substep
-    for (const Particle& d : d_) motion = std::max(motion, glm::length(glm::vec3(d)));
-    still_steps_ = motion * float(substeps_) < kImplicitStill * scale ? still_steps_ + 1 : 0;
-    if (implicit_iterations_ <= 1 || still_steps_ < kImplicitStillSteps) return;
-    if (!(implicit_.moved_since_factor(x_.data()) > kImplicitRefactorMove * scale)) return;
-    implicit_.start_refactor(x_.data());
-    implicit_.continue_refactor(topo_, params_);
-}
-
 // Re-centred from particle 0 (Cloth::recentre_shift).
 void CpuCloth::recentre() {
     const glm::vec3 shift = recentre_shift(glm::vec3(x_[0]));
@@ -134,7 +114,6 @@ void CpuCloth::begin(float dt) {
         substeps_ = std::min(kMaxSubsteps, std::max(substeps_, self_collision_substeps(dt)));
     h_ = dt / float(substeps_);
     iterations_ = iterations_for();
-    if (params_.model == DRAPE_MODEL_IMPLICIT) refactor_implicit_when_still();
     implicit_iterations_ = 0;
     std::memcpy(backup_x_.data(), x_.data(), n * sizeof(Particle));
     std::memcpy(backup_d_.data(), d_.data(), n * sizeof(Particle));

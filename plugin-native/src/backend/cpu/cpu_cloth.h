@@ -91,8 +91,6 @@ private:
     template <class KinematicAt>
     void implicit_substep(kernels::SubstepContext& c, const KinematicAt& kinematic_at);
     void factor_implicit(float h);
-    void refactor_implicit_when_still();
-    uint32_t still_steps_ = 0;  ///< IMPLICIT: steps in a row in which the cloth was still
     float last_h_ = 0;  ///< substep of the last step, s (0: none yet)
     std::vector<float> slot_coef_;  ///< per-spring Jacobi factor of the current step (kernels.h)
 

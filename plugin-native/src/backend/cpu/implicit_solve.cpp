@@ -6,7 +6,6 @@
 #include <cassert>
 #include <cmath>
 #include <glm/common.hpp>
-#include <glm/exponential.hpp>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 #include <numeric>
@@ -111,8 +110,8 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     const int m = int(particle_.size());
     for (int r = 0; r < m; ++r) row[particle_[r]] = r;
 
-    // L's pattern from Eigen's factor of A in that order (no further ordering), kept by columns
-    // for factor_rows and by rows for the substitutions; the values come from factor_rows.
+    // L from Eigen's factor of A in that order (no further ordering), kept by rows for the
+    // substitutions, in float.
     std::vector<Eigen::Triplet<double>> entries;
     entries.reserve(size_t(m) * (nb.slots + 1));
     for (uint32_t i : free) {
@@ -125,9 +124,7 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     SparseMatrix a(m, m);
     a.setFromTriplets(entries.begin(), entries.end());
     Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>> llt(a);
-    const SparseMatrix& l = llt.matrixL().nestedExpression();
-    col_start_.assign(l.outerIndexPtr(), l.outerIndexPtr() + m + 1);
-    col_row_.assign(l.innerIndexPtr(), l.innerIndexPtr() + l.nonZeros());
+    const SparseMatrix& l = llt.matrixL().nestedExpression();  // by columns, the diagonal first
     std::vector<uint32_t> row_count(m + 1, 0);
     for (int j = 0; j < m; ++j)
         for (int k = l.outerIndexPtr()[j] + 1; k < l.outerIndexPtr()[j + 1]; ++k)
@@ -136,35 +133,17 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     std::partial_sum(row_count.begin(), row_count.end(), row_start_.begin());
     std::vector<uint32_t> fill(row_start_.begin(), row_start_.end() - 1);
     row_col_.resize(row_start_[m]);
-    for (int j = 0; j < m; ++j)
-        for (int k = l.outerIndexPtr()[j] + 1; k < l.outerIndexPtr()[j + 1]; ++k)
-            row_col_[fill[l.innerIndexPtr()[k]]++] = uint32_t(j);
     row_value_.resize(row_start_[m]);
     inv_diag_.resize(m);
-    col_value_.resize(col_row_.size());
-    col_fill_.resize(m);
-    work_.assign(m, glm::dvec3(0.0));
-    row_of_.assign(row.begin(), row.end());
-    spring_scale_ = INFINITY;
-    for (uint32_t i : free)
-        for (uint32_t s = 0; s < nb.count[i]; ++s) {
-            const uint8_t g = nb.group[size_t(i) * nb.slots + s];
-            if (g < DRAPE_GROUP_COUNT && params.stiffness[g] > 0)
-                spring_scale_ = std::min(spring_scale_, nb.rest[size_t(i) * nb.slots + s]);
+    for (int j = 0; j < m; ++j) {
+        inv_diag_[j] = float(1.0 / l.valuePtr()[l.outerIndexPtr()[j]]);
+        for (int k = l.outerIndexPtr()[j] + 1; k < l.outerIndexPtr()[j + 1]; ++k) {
+            const uint32_t e = fill[l.innerIndexPtr()[k]]++;
+            row_col_[e] = uint32_t(j);
+            row_value_[e] = float(l.valuePtr()[k]);
         }
-    factored_at_.assign(x, x + n);
-    refactor_at_.resize(n);
-    row_value_next_.resize(row_value_.size());
-    inv_diag_next_.resize(m);
+    }
     h_ = h;
-    update_budget_ = ~uint64_t(0);
-    next_row_ = factor_rows(topo, params, factored_at_.data(), 0, false, row_value_.data(), inv_diag_.data());
-    row_value1_.resize(row_value_.size());
-    inv_diag1_.resize(m);
-    for (size_t e = 0; e < row_value_.size(); ++e) row_value1_[e] = row_value_[e].x;
-    for (int k = 0; k < m; ++k) inv_diag1_[k] = inv_diag_[k].x;
-    update_budget_ = std::max<uint64_t>(1, updates_ / kRefactorSteps);
-    tension_ = false;
     // The dissection holds: a part's rows only reach its own columns.
     for (int p = 0; p < kParts; ++p)
         for (uint32_t r = begin_[p]; r < begin_[p + 1]; ++r)
@@ -183,92 +162,6 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     block_inv_.assign(n, glm::mat3(0.0f));
     in_contact_.reserve(n);
     block_sum_.assign((n + kBlock - 1) / kBlock, 0.0);
-}
-
-void ImplicitSolve::start_refactor(const Particle* x) {
-    std::copy(x, x + refactor_at_.size(), refactor_at_.begin());
-    next_row_ = 0;
-}
-
-void ImplicitSolve::continue_refactor(const Topology& topo, const drape_params& params) {
-    next_row_ = factor_rows(topo, params, refactor_at_.data(), next_row_, true, row_value_next_.data(),
-                            inv_diag_next_.data());
-    if (refactoring()) return;
-    row_value_.swap(row_value_next_);
-    inv_diag_.swap(inv_diag_next_);
-    factored_at_.swap(refactor_at_);
-    tension_ = true;
-}
-
-uint32_t ImplicitSolve::factor_rows(const Topology& topo, const drape_params& params, const Particle* at,
-                                    uint32_t first, bool tension, glm::vec3* row_value, glm::vec3* inv_diag) {
-    // Up-looking Cholesky (Davis 2006, "Direct methods for sparse linear systems", 4.7), the three
-    // axes at once: row k of L solves L[0:k, 0:k] l = A[0:k, k], whose pattern (row_col_, ascending,
-    // which is topological: every update goes to a later column) and the columns' patterns
-    // (col_row_) are known, so nothing is allocated. A is symmetric positive definite whatever the
-    // weights (M/h^2 > 0, weights >= 0), so every pivot is positive. Rows from first until
-    // update_budget_ updates are done or L is; returns the next row.
-    const NeighbourTable& nb = topo.nbr;
-    const double kd_h = double(params.damping) / h_;
-    const double inv_h2 = 1.0 / (double(h_) * h_);
-    const uint32_t m = uint32_t(particle_.size());
-    if (first == 0) {
-        std::fill(col_fill_.begin(), col_fill_.end(), 0u);
-        updates_ = 0;
-    }
-    uint64_t done = 0;
-    uint32_t k = first;
-    for (; k < m && done < update_budget_; ++k) {
-        const uint32_t i = particle_[k];
-        // Row k of A: scatter its columns below k into work_, sum its diagonal.
-        glm::dvec3 d(inv_h2 / double(at[i].w));
-        for (uint32_t s = 0; s < nb.count[i]; ++s) {
-            const size_t slot = size_t(i) * nb.slots + s;
-            const uint8_t g = nb.group[slot];
-            if (g >= DRAPE_GROUP_COUNT || !(params.stiffness[g] > 0)) continue;
-            const uint32_t j = nb.index[slot];
-            const glm::dvec3 w = spring_weight(double(params.stiffness[g]), kd_h, nb.rest[slot],
-                                               glm::vec3(at[i]) - glm::vec3(at[j]), tension);
-            d += w;
-            if (row_of_[j] >= 0 && uint32_t(row_of_[j]) < k) work_[row_of_[j]] -= w;
-        }
-        for (uint32_t e = row_start_[k]; e < row_start_[k + 1]; ++e) {
-            const uint32_t c = row_col_[e];
-            const glm::dvec3 lkc = work_[c] / col_value_[col_start_[c]];
-            work_[c] = glm::dvec3(0.0);
-            const uint32_t from = col_start_[c] + 1, filled = from + col_fill_[c]++;
-            for (uint32_t q = from; q < filled; ++q) work_[col_row_[q]] -= col_value_[q] * lkc;
-            done += filled - from + 1;
-            assert(col_row_[filled] == k);
-            col_value_[filled] = lkc;
-            row_value[e] = glm::vec3(lkc);
-            d -= lkc * lkc;
-        }
-        assert(d.x > 0 && d.y > 0 && d.z > 0);
-        const glm::dvec3 lkk = glm::sqrt(d);
-        col_value_[col_start_[k]] = lkk;
-        inv_diag[k] = glm::vec3(1.0 / lkk);
-    }
-    updates_ += done;
-    return k;
-}
-
-glm::dvec3 ImplicitSolve::spring_weight(double k, double kd_h, float rest, const glm::vec3& xij,
-                                        bool tension) {
-    if (!tension) return glm::dvec3(k + kd_h);
-    const glm::dvec3 v(xij);
-    const double len = std::sqrt(glm::dot(v, v));
-    if (!(len > 0)) return glm::dvec3(k + kd_h);
-    const glm::dvec3 n2 = (v / len) * (v / len);
-    const double t = k * std::max(0.0, 1.0 - double(rest) / len);
-    return (k + kd_h) * n2 + t * (1.0 - n2);
-}
-
-float ImplicitSolve::moved_since_factor(const Particle* x) const {
-    float moved = 0;
-    for (size_t i = 0; i < factored_at_.size(); ++i)
-        moved = std::max(moved, glm::length(glm::vec3(x[i]) - glm::vec3(factored_at_[i])));
-    return moved;
 }
 
 template <class Fn>
@@ -423,18 +316,14 @@ ImplicitSolve::Dots ImplicitSolve::precondition(const Particle* r, const Particl
                 if (uint32_t(p) % threads == t) fn(p);
         });
     };
-    auto run = [&](const auto* value, const auto* inv_diag) {
+    auto run = [&](const float* value, const float* inv_diag) {
         each_part([&](int p) { forward_part(p, r, value, inv_diag); });
         separator(r, r_prev, z, value, inv_diag);
         each_part([&](int p) {
             part_dots_[p] = back_substitute(begin_[p], begin_[p + 1], r, r_prev, z, value, inv_diag);
         });
     };
-    // The constant factor has one value for the three axes: half the memory traffic of three.
-    if (tension_)
-        run(row_value_.data(), inv_diag_.data());
-    else
-        run(row_value1_.data(), inv_diag1_.data());
+    run(row_value_.data(), inv_diag_.data());
     Dots sum;
     for (const Dots& d : part_dots_) {
         sum.rz += d.rz;
@@ -443,8 +332,7 @@ ImplicitSolve::Dots ImplicitSolve::precondition(const Particle* r, const Particl
     return sum;
 }
 
-template <class V>
-void ImplicitSolve::forward_part(int p, const Particle* r, const V* value, const V* inv_diag) {
+void ImplicitSolve::forward_part(int p, const Particle* r, const float* value, const float* inv_diag) {
     // L y = r over the part's rows, then the part's share of each separator row's sum.
     for (uint32_t row = begin_[p]; row < begin_[p + 1]; ++row) {
         glm::vec3 v(r[particle_[row]]);
@@ -461,9 +349,8 @@ void ImplicitSolve::forward_part(int p, const Particle* r, const V* value, const
     }
 }
 
-template <class V>
-void ImplicitSolve::separator(const Particle* r, const Particle* r_prev, Particle* z, const V* value,
-                              const V* inv_diag) {
+void ImplicitSolve::separator(const Particle* r, const Particle* r_prev, Particle* z, const float* value,
+                              const float* inv_diag) {
     // Forward over the separator rows (the parts' shares summed in part order), then backward.
     const uint32_t sep = begin_[kParts], m = begin_[kParts + 1];
     for (uint32_t row = sep; row < m; ++row) {
@@ -477,10 +364,9 @@ void ImplicitSolve::separator(const Particle* r, const Particle* r_prev, Particl
     part_dots_[kParts] = back_substitute(sep, m, r, r_prev, z, value, inv_diag);
 }
 
-template <class V>
 ImplicitSolve::Dots ImplicitSolve::back_substitute(uint32_t first, uint32_t last, const Particle* r,
-                                                   const Particle* r_prev, Particle* z, const V* value,
-                                                   const V* inv_diag) {
+                                                   const Particle* r_prev, Particle* z, const float* value,
+                                                   const float* inv_diag) {
     // L^T y' = y over rows [first, last), last row first, by rows of L: a row's y is final once every
     // later row has subtracted its share, and the row then subtracts its own from the earlier rows it
     // reaches (its own part's; the separator's reach both parts, so it runs before them). z takes y'

@@ -9,15 +9,16 @@
 //   1 - L/l) across it: modes that bend or swing the cloth are nearly mass-dominated in H and
 //   stiff in A, so P = A alone left them to CG, ~sqrt(k/T) iterations. With a few, the default
 //   fell in slow motion (bench part 'fall', 17^2 sheet from two corners, fall 0.74 / 0.28 as far
-//   as MASS_SPRING at 2e4 / 1e5 N/m), and a taut sheet's sag crept.
+//   as MASS_SPRING at 2e4 / 1e5 N/m), and a taut sheet's sag swung at rest by 0.1-1 % for good
+//   (the fall's energy kept by modes the solve barely touched).
 // - D: per free particle its 3x3 block of H at the solve's first iterate (block_hessian), M/h^2
 //   plus per spring (k + kd/h) n n^T + T (I - n n^T): ~h^2/m where A^-1 is ~0 (motion across the
 //   springs), ~0 where A^-1 is right (along stiff springs). Fall now 0.97 / 0.76.
 // What neither reaches: a curved stiff sheet's bending, whose motion across the springs needs a
 // coordinated motion along them (per particle D cannot, and A charges it k); CG takes those.
-// Step lengths come from H (kernels::implicit_curvature). A cloth that has come to rest elsewhere
-// than its factor was built is also refactored there with its springs' tension (start_refactor):
-// per axis the diagonal of each spring's Hessian block.
+// Step lengths come from H (kernels::implicit_curvature). With D the taut sheets settle without
+// refactoring A at rest with its springs' tension (which the library did until D came: 56 bytes per
+// factor entry, 611 ms per 129^2 refactor).
 // The fixed point is r = 0, the exact equilibrium, whatever the preconditioner.
 //
 // The factor's rows are ordered by a one-level nested dissection: two parts that share no spring,
@@ -51,21 +52,6 @@ class ImplicitSolve {
 
     /// Builds and factors A for substep h; particles with x[i].w == 0 are kinematic. Allocates.
     void factor(const Topology& topo, const drape_params& params, const Particle* x, float h);
-    /// Refactors A (same substep, masses, stiffness and pattern) at the configuration x, spread over
-    /// the next kRefactorSteps calls of continue_refactor (a 129^2 factor is several steps' work), the
-    /// current factor serving meanwhile; allocates nothing. Each spring's weight per axis is then the
-    /// diagonal of its Hessian block there, (k + kd/h) n_a^2 + T (1 - n_a^2), T = k max(0, 1 - L/l)
-    /// (factor's: k + kd/h on every axis, the constant A above). A taut sheet's sag and transverse
-    /// waves are resisted by T alone: the constant A charges them k, so a few iterations barely
-    /// touched them, and they kept the energy of the cloth's fall, swinging its sag by 0.1-1 % at
-    /// rest for good; with T they settle.
-    void start_refactor(const Particle* x);
-    void continue_refactor(const Topology& topo, const drape_params& params);
-    bool refactoring() const { return next_row_ < particle_.size(); }
-    /// Largest distance of a particle from where it was at the last factor, m.
-    float moved_since_factor(const Particle* x) const;
-    /// Shortest rest length of the springs in A, m (the cloth's length scale).
-    float spring_scale() const { return spring_scale_; }
     /// Substep the factor was built for, s (0: none yet).
     float h() const { return h_; }
 
@@ -100,44 +86,21 @@ class ImplicitSolve {
     void block_hessian(const kernels::SubstepContext& c, const Particle* start, const Particle* disp, ThreadPool* pool);
     /// z = A^-1 r + D^-1 r on the free particles (z stays 0 on kinematic ones), with r.z and z.r_prev.
     Dots precondition(const Particle* r, const Particle* r_prev, Particle* z, ThreadPool* pool);
-    // The substitutions with L's values (float: the constant factor's, one for all axes; glm::vec3:
-    // the tension factor's).
-    template <class V>
-    void forward_part(int p, const Particle* r, const V* value, const V* inv_diag);
-    template <class V>
-    void separator(const Particle* r, const Particle* r_prev, Particle* z, const V* value, const V* inv_diag);
-    template <class V>
+    // The substitutions with L's values (one per entry: A's three axes are equal).
+    void forward_part(int p, const Particle* r, const float* value, const float* inv_diag);
+    void separator(const Particle* r, const Particle* r_prev, Particle* z, const float* value, const float* inv_diag);
     Dots back_substitute(uint32_t first, uint32_t last, const Particle* r, const Particle* r_prev, Particle* z,
-                         const V* value, const V* inv_diag);
-
-    static glm::dvec3 spring_weight(double k, double kd_h, float rest, const glm::vec3& xij, bool tension);
-    /// Rows of L (into row_value, inv_diag) from first at the configuration at; see continue_refactor.
-    uint32_t factor_rows(const Topology& topo, const drape_params& params, const Particle* at, uint32_t first,
-                         bool tension, glm::vec3* row_value, glm::vec3* inv_diag);
-    static constexpr uint64_t kRefactorSteps = 16;  ///< calls a refactor is spread over
+                         const float* value, const float* inv_diag);
 
     float h_ = 0;
-    bool tension_ = false;  ///< the factor has the tension weights (start_refactor)
-    float spring_scale_ = 0;
     std::vector<float> key_;           ///< stiffness, damping and inverse masses it was built from
     uint32_t begin_[kParts + 2] = {};  ///< factor rows of part p: [begin_[p], begin_[p + 1]); separator last
     std::vector<uint32_t> particle_;   ///< particle of each factor row
-    std::vector<glm::vec3> inv_diag_;  ///< 1 / L_jj, per axis
+    std::vector<float> inv_diag_;      ///< 1 / L_jj
     // Strictly lower part of L by rows: the forward substitution gathers along a row, the back
     // substitution scatters along it (a part's rows reach only its own columns, so parts run at once).
     std::vector<uint32_t> row_start_, row_col_;
-    std::vector<glm::vec3> row_value_;  ///< per axis
-    std::vector<float> row_value1_, inv_diag1_;  ///< the constant factor's (its axes are equal)
-    // L by columns in double for factor_rows: the rows of column j's entries (its diagonal first) at
-    // [col_start_[j], col_start_[j + 1]), their values, how many of them it has computed, and
-    // a row of A being solved; each particle's factor row (-1: kinematic); where the particles were.
-    std::vector<uint32_t> col_start_, col_row_, col_fill_;
-    std::vector<glm::dvec3> col_value_, work_;
-    std::vector<int> row_of_;
-    std::vector<Particle> factored_at_, refactor_at_;
-    std::vector<glm::vec3> row_value_next_, inv_diag_next_;  ///< the refactor in progress
-    uint32_t next_row_ = 0;                      ///< its next row (all: none in progress)
-    uint64_t updates_ = 0, update_budget_ = 0;  ///< a factor's inner updates, and a call's share
+    std::vector<float> row_value_;
     /// Per separator row, where its entries in each part's columns end (they are sorted by column).
     std::vector<uint32_t> sep_split_;
     std::vector<glm::vec3> y_;        ///< scratch, one per factor row
