@@ -224,7 +224,15 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         return sum;
     });
     const double converged_release = double(tolerance) * double(tolerance) * load;
-    block_hessian(c, start, iterate, pool);
+    // A single iteration has no next one to halve an overshoot, so it takes the plain step
+    // d += A^-1 r: A alone bounds the clamped Hessian, so that step lowers Phi (D^-1 r with a Newton
+    // step length does not: IMPLICIT 1x1 blew up in 5 of the 15 quick S1 cells with it), and it solves
+    // the linear part (rigid motion, stretch along the load) at once. Not when A was built for a
+    // longer substep (a fast collider added substeps): its mass term is then smaller than the
+    // Hessian's.
+    const bool plain_step = max_iterations == 1 && h_ < c.h * (1.0f + kImplicitRefactor);
+    with_blocks_ = !plain_step;
+    if (with_blocks_) block_hessian(c, start, iterate, pool);
     // Preconditioned nonlinear conjugate gradients: the first direction is z = P^-1 r, then
     // Polak-Ribiere (clamped at 0, which restarts on z), each with the step length of one Newton
     // step along the direction, alpha = r.p / p.Hp (Shewchuk 1994, "An introduction to the
@@ -248,6 +256,10 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         const Dots dots = precondition(r_.data(), r_prev_.data(), first ? p_.data() : z_.data(), pool);
         ++it;
         if (!(dots.rz > 0)) break;  // r = 0: at the minimum
+        if (plain_step) {
+            move(p_, 1.0f);
+            break;
+        }
         double rp = dots.rz;
         if (!first) {
             double beta = restart ? 0.0 : std::max(0.0, (dots.rz - dots.z_r_prev) / rz_prev);
@@ -377,8 +389,8 @@ ImplicitSolve::Dots ImplicitSolve::back_substitute(uint32_t first, uint32_t last
         y_[row] = v;
         for (uint32_t k = row_start_[row]; k < row_start_[row + 1]; ++k) y_[row_col_[k]] -= value[k] * v;
         const uint32_t i = particle_[row];
-        glm::vec3 zi = v + block_inv_[i] * glm::vec3(r[i]);  // A^-1 r + D^-1 r
-        if (normal_) zi -= std::min(0.0f, glm::dot(v, normal_[i])) * normal_[i];  // no step inwards at a contact
+        glm::vec3 zi = with_blocks_ ? v + block_inv_[i] * glm::vec3(r[i]) : v;  // A^-1 r (+ D^-1 r)
+        if (normal_) zi -= std::min(0.0f, glm::dot(zi, normal_[i])) * normal_[i];  // no step inwards at a contact
         z[i] = Particle(zi, 0.0f);
         dots.rz += double(glm::dot(zi, glm::vec3(r[i])));
         dots.z_r_prev += double(glm::dot(zi, glm::vec3(r_prev[i])));

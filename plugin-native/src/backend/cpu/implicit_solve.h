@@ -16,7 +16,8 @@
 //   springs), ~0 where A^-1 is right (along stiff springs). Fall now 0.97 / 0.76.
 // What neither reaches: a curved stiff sheet's bending, whose motion across the springs needs a
 // coordinated motion along them (per particle D cannot, and A charges it k); CG takes those.
-// Step lengths come from H (kernels::implicit_curvature). With D the taut sheets settle without
+// Step lengths come from H (kernels::implicit_curvature), except for a 1-iteration budget, which
+// takes the plain step d += A^-1 r without D (see solve). With D the taut sheets settle without
 // refactoring A at rest with its springs' tension (which the library did until D came: 56 bytes per
 // factor entry, 611 ms per 129^2 refactor).
 // The fixed point is r = 0, the exact equilibrium, whatever the preconditioner.
@@ -84,7 +85,7 @@ class ImplicitSolve {
     };
     /// block_inv_ at start + disp, for this solve.
     void block_hessian(const kernels::SubstepContext& c, const Particle* start, const Particle* disp, ThreadPool* pool);
-    /// z = A^-1 r + D^-1 r on the free particles (z stays 0 on kinematic ones), with r.z and z.r_prev.
+    /// z = A^-1 r (+ D^-1 r: with_blocks_) on the free particles (z stays 0 on kinematic ones), with r.z and z.r_prev.
     Dots precondition(const Particle* r, const Particle* r_prev, Particle* z, ThreadPool* pool);
     // The substitutions with L's values (one per entry: A's three axes are equal).
     void forward_part(int p, const Particle* r, const float* value, const float* inv_diag);
@@ -111,6 +112,7 @@ class ImplicitSolve {
     // residual and direction.
     std::vector<Particle> r_, r_prev_, z_, p_;
     std::vector<glm::mat3> block_inv_;  ///< per particle the inverse of its block of H (block_hessian)
+    bool with_blocks_ = true;           ///< this solve's preconditioner adds D^-1 r (not a plain 1-iteration step)
     std::vector<uint32_t> in_contact_;       ///< particles with a contact normal in this solve
     const glm::vec3* normal_ = nullptr;  ///< this solve's contact normals, null if none
 };
