@@ -313,6 +313,20 @@ TEST_F(Gles, DefaultModelIsImplicit) {
     ASSERT_DRAPE_OK(drape_params_default(&p));
     ASSERT_DRAPE_OK(drape_cloth_set_params(c, &p));
     EXPECT_EQ(params_of(c).model, uint32_t(DRAPE_MODEL_IMPLICIT));
+    // drape_estimate_stability reports the substeps the GLES cloth's steps then take (GLES IMPLICIT
+    // runs more, shorter substeps than the CPU's), and a CPU cloth's.
+    for (float dt : {1.0f / 60, 0.1f}) {
+        for (drape_backend backend : {DRAPE_BACKEND_GLES, DRAPE_BACKEND_CPU}) {
+            drape_cloth_desc db{sizeof db, uint32_t(backend), 0.5f};
+            drape_cloth* cb = nullptr;
+            ASSERT_DRAPE_OK(drape_cloth_create_grid(w.get(), &db, &g, &cb));
+            drape_stability e{sizeof e};
+            ASSERT_DRAPE_OK(drape_estimate_stability(&db, &g, nullptr, &p, dt, &e));
+            ASSERT_DRAPE_OK(drape_cloth_step(cb, dt));
+            EXPECT_EQ(e.substeps, stats_of(cb).substeps) << "backend " << backend << ", dt " << dt;
+            ASSERT_DRAPE_OK(drape_cloth_destroy(cb));
+        }
+    }
 }
 
 TEST_F(Gles, WorldStepAndModelSwitchKeepParity) {

@@ -713,7 +713,7 @@ drape_status drape_estimate_stability(const drape_cloth_desc* desc, const drape_
             CookResult r = cook_mesh(*mesh, desc->total_mass, topo);
             if (r.status != DRAPE_OK) return fail(r.status, r.message);
         }
-        const StabilityEstimate e = estimate_stability(topo, resolve_model(*params), dt);
+        const StabilityEstimate e = estimate_stability(topo, resolve_model(*params), drape_backend(desc->backend), dt);
         drape_stability out = abi::Layout<drape_stability>::defaults();
         out.substeps = e.substeps;
         out.stable_substeps = e.stable_substeps;

@@ -114,8 +114,8 @@ public:
         return false;
     }
 
-    /// Substeps a step of dt uses with the current parameters.
-    virtual uint32_t substeps_for(float dt) const;
+    /// Substeps a step of dt uses with the current parameters on this cloth's backend.
+    uint32_t substeps_for(float dt) const;
     /// Iterations per substep with the current parameters (0 in drape_params = automatic).
     virtual uint32_t iterations_for() const;
 

@@ -36,15 +36,17 @@ float mass_spring_max_substep(float inverse_mass, float stiffness_sum, float dam
     return a > 0 ? (-b + std::sqrt(b * b + 4.0f * s * s * a)) / a : 2.0f * s * s / std::max(b, 1e-30f);
 }
 
-uint32_t substeps_for(const drape_params& p, float h_max, float dt) {
+uint32_t substeps_for(const drape_params& p, drape_backend backend, float h_max, float dt) {
     if (p.substeps > 0) return p.substeps;
-    if (p.model == DRAPE_MODEL_IMPLICIT) return kAutoSubstepsImplicit;
-    if (p.model != DRAPE_MODEL_MASS_SPRING) return kAutoSubstepsPositionBased;
-    const float s = std::ceil(dt / h_max);
+    const bool gles_implicit = p.model == DRAPE_MODEL_IMPLICIT && backend == DRAPE_BACKEND_GLES;
+    if (p.model == DRAPE_MODEL_IMPLICIT && !gles_implicit) return kAutoSubstepsImplicit;
+    if (p.model != DRAPE_MODEL_MASS_SPRING && !gles_implicit) return kAutoSubstepsPositionBased;
+    // 1e-3: 1/60 s over 1/960 s is 16, not 17 by rounding.
+    const float s = gles_implicit ? std::ceil(dt / kMaxAutoSubstepImplicitGles - 1e-3f) : std::ceil(dt / h_max);
     return s < 1 ? 1u : s > float(kMaxSubsteps) ? kMaxSubsteps : uint32_t(s);
 }
 
-StabilityEstimate estimate_stability(const Topology& topo, const drape_params& p, float dt) {
+StabilityEstimate estimate_stability(const Topology& topo, const drape_params& p, drape_backend backend, float dt) {
     float h_max = INFINITY;
     if (p.model == DRAPE_MODEL_MASS_SPRING) {
         const NeighbourTable& nb = topo.nbr;
@@ -62,7 +64,7 @@ StabilityEstimate estimate_stability(const Topology& topo, const drape_params& p
         }
     }
     StabilityEstimate e{};
-    e.substeps = substeps_for(p, h_max, dt);
+    e.substeps = substeps_for(p, backend, h_max, dt);
     const bool bounded = p.model == DRAPE_MODEL_MASS_SPRING && std::isfinite(h_max);
     const double needed = bounded ? std::ceil(double(dt) / double(h_max)) : 1.0;
     e.stable_substeps = needed >= 4294967295.0 ? UINT32_MAX : std::max(1u, uint32_t(needed));

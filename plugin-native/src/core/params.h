@@ -73,10 +73,11 @@ inline float verlet_accel_h(float h, float h_prev, bool first) { return first ? 
 /// nothing bounds it: no active spring or no inverse mass).
 float mass_spring_max_substep(float inverse_mass, float stiffness_sum, float damping, uint32_t active_springs);
 
-/// Substeps a step of dt uses: params.substeps if set; else MASS_SPRING: ceil(dt / h_max)
+/// Substeps a step of dt uses on `backend`: params.substeps if set; else MASS_SPRING: ceil(dt / h_max)
 /// (h_max from mass_spring_max_substep, the tightest particle), PBD/XPBD:
-/// kAutoSubstepsPositionBased; always in [1, kMaxSubsteps].
-uint32_t substeps_for(const drape_params& p, float h_max, float dt);
+/// kAutoSubstepsPositionBased, IMPLICIT: kAutoSubstepsImplicit on the CPU, substeps of at most
+/// kMaxAutoSubstepImplicitGles on GLES; always in [1, kMaxSubsteps].
+uint32_t substeps_for(const drape_params& p, drape_backend backend, float h_max, float dt);
 
 struct Topology;
 struct StabilityEstimate {
@@ -85,7 +86,7 @@ struct StabilityEstimate {
     float max_stable_substep;   ///< s; 0 = no explicit bound
 };
 /// For a cloth with this topology (cooked masses, no pins) and parameters.
-StabilityEstimate estimate_stability(const Topology& topo, const drape_params& p, float dt);
+StabilityEstimate estimate_stability(const Topology& topo, const drape_params& p, drape_backend backend, float dt);
 
 /// A cloth farther than this from its origin (Cloth::origin; any axis, m) is re-centred: local
 /// coordinates stay within a few metres, where float resolution is about 5e-7 m. A cloth created

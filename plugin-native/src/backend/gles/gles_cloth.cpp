@@ -1526,12 +1526,6 @@ Result GlesCloth::link_grab_program(const std::string& defines, bool pick, GLuin
 
 GLuint GlesCloth::grab_vertex_array() { return vertex_array(g_[0], g_[1], kKinematicInputs); }
 
-uint32_t GlesCloth::substeps_for(float dt) const {
-    if (params_.model != DRAPE_MODEL_IMPLICIT || params_.substeps > 0) return Cloth::substeps_for(dt);
-    const float s = std::ceil(dt / kMaxAutoSubstepImplicitGles - 1e-3f);  // 1/60 s: 2, not 3 by rounding
-    return s < 1 ? 1u : s > float(kMaxSubsteps) ? kMaxSubsteps : uint32_t(s);
-}
-
 uint32_t GlesCloth::iterations_for() const {
     if (params_.model == DRAPE_MODEL_IMPLICIT && params_.iterations == 0) return kAutoIterationsImplicitGles;
     return Cloth::iterations_for();

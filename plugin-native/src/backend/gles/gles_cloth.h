@@ -144,9 +144,8 @@ public:
     /// them all in flight issues none.
     static constexpr int kStillQueries = 3;
     /// IMPLICIT's automatic budget on GLES: kAutoIterationsImplicitGles cheap Jacobi passes per
-    /// substep, substeps of at most kMaxAutoSubstepImplicitGles.
+    /// substep (its substeps: core substeps_for, also what drape_estimate_stability reports).
     uint32_t iterations_for() const override;
-    uint32_t substeps_for(float dt) const override;
     /// GL work needs the caller's context: stepped on the thread that steps the world.
     bool steps_on_pool_thread() const override { return false; }
 
