@@ -88,7 +88,7 @@ run_arm64() {
   fi
   # Not run again here: the arm64 preset's exclusions and the tests that took over ~10 s each
   # under qemu on the loaded CI machine (physics references, collisions, self-collision, sleep,
-  # owner, soak); the hardening arm64 step runs them against the CMake-built library, which
+  # owner, soak); the hardening arm64 step runs those its preset keeps against the CMake-built library, which
   # computes the same bits (no FP contraction, no fast-math in either build). Abi.*: checks of
   # generated files, not of the library (and their python3 is run through qemu in this build).
   local slow='R10Undamped|R11Xpbd|R12Xpbd|ThreadedEqualsSingleThreaded|R4Equilibrium|R9Momentum|FarFromOrigin'
