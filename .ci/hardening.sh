@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
 # Hardening checks, run by .ci/test.sh (so by `npm test` and .ci/run):
-#   asan   whole native suite (unit, physics, GLES on Mesa, soak, threading, fuzz corpus replay)
-#          under AddressSanitizer + UndefinedBehaviorSanitizer + LeakSanitizer, halt on first report
+#   asan   native suite (unit, physics, GLES on Mesa, soak, threading, fuzz corpus replay) under
+#          AddressSanitizer + UndefinedBehaviorSanitizer + LeakSanitizer, halt on first report; the
+#          asan test preset leaves out the long runs whose code shorter tests also reach (rest states
+#          against Newton, threaded-equals-single bit checks, the fine cloth's tethers, friction on a
+#          box, GLES IMPLICIT's drop and fold; 20 soak rounds instead of 40) and the ABI file check
 #   fuzz   libFuzzer over the C ABI for DRAPE_FUZZ_SECONDS (60 under CI, 20 otherwise)
 #   tsan   threading tests (label tsan) under ThreadSanitizer
 #   arm64  native suite cross-compiled for aarch64, run under qemu-user (slow physics references,
 #          the four longest physics runs (47-75 s each under qemu: resting contact, friction, a fine
 #          cloth's tethers, every change waking a cloth; their code runs in the shorter collision,
-#          tether and sleep tests) and GLES excluded: see the arm64 test preset)
+#          tether and sleep tests), the self-collision threaded bit check and GLES excluded: see the
+#          arm64 test preset)
 # Usage: bash .ci/hardening.sh [asan|fuzz|tsan|arm64]...   (no argument: all four)
 set -euo pipefail
 cd "$(dirname "$0")/.."
