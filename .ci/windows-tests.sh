@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Windows x86_64: the native suite cross-built with mingw-w64 (preset windows-x64-tests, which
 # inherits the drape.dll preset windows-x64) and run under Wine (Debian's wine64), headless.
-# Each test binary runs once (one Wine start each) with drape.dll next to it.
+# Each test binary runs with drape.dll next to it: drape_hardening_tests first (its Wine start also
+# creates a fresh prefix), then drape_tests as two shards at once.
 # Every test of drape_tests and drape_hardening_tests runs (~35 s under Wine on a loaded 2-core
 # machine). Not run: the soak binary (it measures the heap with glibc's mallinfo2, which mingw
 # lacks) and the GLES tests (GLES is off on Windows).
@@ -22,17 +23,30 @@ grep -q "DLL Name: drape.dll" <<<"$imports"
 
 export WINEPREFIX=$PWD/build/windows-x64-tests/wineprefix WINEDEBUG=-all WINEDLLOVERRIDES="mscoree,mshtml="
 trap '"$wineserver" -k 2>/dev/null || true' EXIT
+# A test binary's run (shard index of total: GoogleTest's sharding, each test in exactly one shard)
+# in the background, its output in a file (Wine's own processes keep inherited descriptors open).
+start() {
+  GTEST_SHARD_INDEX=$2 GTEST_TOTAL_SHARDS=$3 "$wine" "$bin/$1.exe" >"build/windows-x64-tests/$1.$2.log" 2>&1 </dev/null &
+  pids+=($!)
+}
 status=0
-for t in drape_tests drape_hardening_tests; do
-  log=build/windows-x64-tests/$t.log
-  # Wine's own processes (wineserver) keep inherited descriptors open: output goes to a file.
-  if "$wine" "$bin/$t.exe" >"$log" 2>&1 </dev/null &&
-     grep -qE '^\[  PASSED  \] [1-9]' "$log"; then
-    grep -E '^\[  PASSED  \]|tests? from .* ran' "$log" | sed "s/^/windows-tests: $t: /"
+finish() {
+  local log=build/windows-x64-tests/$1.$2.log
+  if wait "$4" && grep -qE '^\[  PASSED  \] [1-9]' "$log"; then
+    grep -E '^\[  PASSED  \]|tests? from .* ran' "$log" | sed "s/^/windows-tests: $1 shard $2\/$3: /"
   else
     grep -E '^\[  FAILED  \]|Failure|error' "$log" | head -40 || tail -40 "$log"
-    echo "windows-tests: $t failed under Wine (log: $log)" >&2
+    echo "windows-tests: $1 shard $2/$3 failed under Wine (log: $log)" >&2
     status=1
   fi
-done
+}
+pids=()
+start drape_hardening_tests 0 1
+finish drape_hardening_tests 0 1 "${pids[0]}"
+# drape_tests took ~75 s of the stage's ~160 s in one process: one shard per core.
+pids=()
+start drape_tests 0 2
+start drape_tests 1 2
+finish drape_tests 0 2 "${pids[0]}"
+finish drape_tests 1 2 "${pids[1]}"
 exit $status
