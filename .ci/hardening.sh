@@ -4,7 +4,8 @@
 #          AddressSanitizer + UndefinedBehaviorSanitizer + LeakSanitizer, halt on first report; the
 #          asan test preset leaves out the long runs whose code shorter tests also reach (rest states
 #          against Newton, threaded-equals-single bit checks, the fine cloth's tethers, friction on a
-#          box, GLES IMPLICIT's drop and fold; 20 soak rounds instead of 40) and the ABI file check
+#          box, GLES IMPLICIT's drop and CPU comparison, the GLES self-collision fold, MASS_SPRING's
+#          33x20 GLES parity; 20 soak rounds instead of 40) and the ABI file check
 #   fuzz   libFuzzer over the C ABI for DRAPE_FUZZ_SECONDS (60 under CI, 20 otherwise)
 #   tsan   threading tests (label tsan) under ThreadSanitizer
 #   arm64  native suite cross-compiled for aarch64, run under qemu-user (slow physics references,
