@@ -162,6 +162,7 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     block_inv_.assign(n, glm::mat3(0.0f));
     in_contact_.reserve(n);
     block_sum_.assign((n + kBlock - 1) / kBlock, 0.0);
+    coarse_.build(topo, x);
 }
 
 template <class Fn>
@@ -233,6 +234,7 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
     const bool plain_step = max_iterations == 1 && h_ < c.h * (1.0f + kImplicitRefactor);
     with_blocks_ = !plain_step;
     if (with_blocks_) block_hessian(c, start, iterate, pool);
+    with_coarse_ = false;
     // Preconditioned nonlinear conjugate gradients: the first direction is z = P^-1 r, then
     // Polak-Ribiere (clamped at 0, which restarts on z), each with the step length of one Newton
     // step along the direction, alpha = r.p / p.Hp (Shewchuk 1994, "An introduction to the
@@ -251,6 +253,13 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         if (!first && rp_prev + rp_new < 0) {
             move(p_, -0.5f * alpha);
             rp_new = residual(p_.data());
+            restart = true;
+        }
+        if (it == 1 && with_blocks_) {
+            // Not converged in one iteration, so in motion: from here on the preconditioner adds the
+            // coarse space (coarse_space.h), assembled at this iterate; a cloth at rest never pays for it.
+            over_patches(pool, [&](uint32_t p) { coarse_.assemble(c, start, iterate, p); });
+            with_coarse_ = coarse_.factor();
             restart = true;
         }
         const Dots dots = precondition(r_.data(), r_prev_.data(), first ? p_.data() : z_.data(), pool);
@@ -311,6 +320,19 @@ void ImplicitSolve::block_hessian(const kernels::SubstepContext& c, const Partic
     });
 }
 
+template <class Fn>
+void ImplicitSolve::over_patches(ThreadPool* pool, Fn&& fn) {
+    const uint32_t count = coarse_.patch_count();
+    if (pool && pool->size() > 1 && r_.size() >= ThreadPool::kMinParallelCount) {
+        const uint32_t threads = pool->size();
+        pool->run_on_all([&](uint32_t t) {
+            for (uint32_t p = t; p < count; p += threads) fn(p);
+        });
+    } else {
+        for (uint32_t p = 0; p < count; ++p) fn(p);
+    }
+}
+
 ImplicitSolve::Dots ImplicitSolve::precondition(const Particle* r, const Particle* r_prev, Particle* z,
                                                 ThreadPool* pool) {
     // Parts on their own threads (part p on thread p mod size), or one after the other: the same
@@ -335,6 +357,10 @@ ImplicitSolve::Dots ImplicitSolve::precondition(const Particle* r, const Particl
             part_dots_[p] = back_substitute(begin_[p], begin_[p + 1], r, r_prev, z, value, inv_diag);
         });
     };
+    if (with_coarse_) {
+        over_patches(pool, [&](uint32_t p) { coarse_.restrict_residual(r, p); });
+        coarse_.solve();
+    }
     run(row_value_.data(), inv_diag_.data());
     Dots sum;
     for (const Dots& d : part_dots_) {
@@ -390,6 +416,7 @@ ImplicitSolve::Dots ImplicitSolve::back_substitute(uint32_t first, uint32_t last
         for (uint32_t k = row_start_[row]; k < row_start_[row + 1]; ++k) y_[row_col_[k]] -= value[k] * v;
         const uint32_t i = particle_[row];
         glm::vec3 zi = with_blocks_ ? v + block_inv_[i] * glm::vec3(r[i]) : v;  // A^-1 r (+ D^-1 r)
+        if (with_coarse_) zi += coarse_.at(i);
         if (normal_) zi -= std::min(0.0f, glm::dot(zi, normal_[i])) * normal_[i];  // no step inwards at a contact
         z[i] = Particle(zi, 0.0f);
         dots.rz += double(glm::dot(zi, glm::vec3(r[i])));
