@@ -28,6 +28,10 @@
 #define DRAPE_DRAG_VIEW_VEC4 9
 #define DRAPE_TOUCH_VEC4 2
 
+// XPBD on GLES: the most vec4s of lambdas (4 neighbour slots each) a displacement-iterate record
+// carries; sim.vert.glsl declares that many attributes and varyings (32 slots).
+#define DRAPE_MAX_LAMBDA_VEC4 8
+
 // Iterations of the swept (sphere-traced) entry search of the collision pass. Each advances by the
 // exact distance, so few are needed except for grazing motion, where a slightly late entry point
 // does no harm.

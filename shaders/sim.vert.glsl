@@ -189,7 +189,7 @@ out vec4 v_lambda6;
 #if DRAPE_LAMBDA_VEC4 >= 8
 out vec4 v_lambda7;
 #endif
-#if DRAPE_LAMBDA_VEC4 > 8
+#if DRAPE_LAMBDA_VEC4 > DRAPE_MAX_LAMBDA_VEC4  // the v_lambda* above and a_lambda* below
 #error "more than 32 neighbour slots is not supported by the GLES backend"
 #endif
 #endif
@@ -295,12 +295,12 @@ vec4 solve_slots4(Own o, int q, vec4 lambda, inout vec3 dx) {
 // The block-Jacobi step of particle i (free) on Phi(d) = sum_i |d_i - y_i|^2 / (2 w_i h^2) +
 // sum_springs k/2 (|x_i - x_j| - L)^2 + dashpots (kernels::implicit_residual): the force residual
 // r_i = -grad_i Phi and a 3x3 block D_i like Phi's Hessian block H_ii, but with each spring's
-// transverse stiffness k (1 - L/l) taken by its magnitude: D_i is positive definite, and since a
-// spring's term in H is at most twice its share of the two blocks, H <= 2 D: the damped iteration
-// converges for the linearised problem. (Dropping a compressed spring's negative transverse term
-// instead, as kernels::implicit_hessian_product does, let a stiff cloth hanging from two corners
-// oscillate at 150 % strain.) Returns D_i^-1 r_i. Neighbours' iterates from u_x, their substep
-// start from u_aux.
+// transverse stiffness k (1 - L/l) taken by its magnitude (implicit_tension, magnitude true): D_i is
+// positive definite, and since a spring's term in H is at most twice its share of the two blocks,
+// H <= 2 D: the damped iteration converges for the linearised problem. (Dropping a compressed
+// spring's negative transverse term instead, as the CPU's blocks do, let a stiff cloth hanging from
+// two corners oscillate at 150 % strain.) Returns D_i^-1 r_i. Neighbours' iterates from u_x, their
+// substep start from u_aux.
 vec3 jacobi_step(int row, int count, vec3 di, vec3 si, vec3 yi, float wi) {
     float kd_h = u_damping / u_h;
     float mass_h2 = 1.0 / (wi * u_h * u_h);
@@ -315,10 +315,8 @@ vec3 jacobi_step(int row, int count, vec3 di, vec3 si, vec3 yi, float wi) {
         vec3 n = direction((si - fetch_aux(j).xyz) + dij, len);
         float k = u_stiffness[nb.z];
         float rest = uintBitsToFloat(nb.y);
-        r -= (k * (len - rest) + kd_h * dot(n, dij)) * n;
-        float across = len > 0.0 ? k * abs(1.0 - rest / len) : 0.0;
-        mat3 nn = outerProduct(n, n);
-        block += (k + kd_h) * nn + across * (mat3(1.0) - nn);
+        r += implicit_spring_force(n, len, dij, rest, k, kd_h);
+        block += implicit_spring_block(n, k, kd_h, implicit_tension(len, rest, k, true));
     }
     return inverse(block) * r;
 }
@@ -452,11 +450,17 @@ void main() {
     v_d = vec4(dn, wi);
 
 #elif defined(DRAPE_PASS_PREDICT)
-    // kernels::predict<kDashpot>
+    // kernels::predict<kDashpot> (kernels::implicit_predict with DRAPE_IMPLICIT)
     vec3 dn = vec3(0.0);
+#ifdef DRAPE_IMPLICIT
+    vec3 first = vec3(0.0);  // the first iterate of a free particle
+#endif
     if (wi != 0.0) {
         vec3 vi = a_aux.xyz * u_substep.x;
         vec3 a = external_accel(u_gravity, u_air_drag, u_wind, vi);
+#ifdef DRAPE_IMPLICIT
+        dn = implicit_predict(a_aux.xyz, u_substep.y, a, u_h, u_substep.z, first);
+#else
 #ifdef DRAPE_DASHPOT
         vec3 force = vec3(0.0);
         float ci = float(info.y);
@@ -471,6 +475,7 @@ void main() {
         a += wi * force;
 #endif
         dn = verlet_displacement(a_aux.xyz, u_substep.y, a, u_h, u_substep.z);
+#endif
     }
 #ifdef DRAPE_KINEMATIC
     // Cloth::step: the kinematic displacement of this substep, kinematic_at - x
@@ -480,7 +485,7 @@ void main() {
 #ifdef DRAPE_IMPLICIT
     // kernels::implicit_predict: dn is the target y; the first iterate is the inertia alone (at
     // rest exactly 0), kinematic particles their path
-    v_d = vec4(wi != 0.0 ? a_aux.xyz * u_substep.y : dn, wi);
+    v_d = vec4(wi != 0.0 ? first : dn, wi);
     v_prev = v_d;
     v_target = vec4(dn, wi);
 #endif

@@ -1,8 +1,9 @@
 // Per-particle maths of a substep: Verlet prediction, MASS_SPRING and PBD dashpot forces, the PBD and
-// XPBD constraint updates and tethers, for the CPU kernels (backend/cpu/kernels.h) and the GLES
-// simulation passes (sim.vert.glsl), written once in the common subset of glm and GLSL (as
-// collide_shape.h: C++ includes it through backend/cpu/glsl.h). What stays on each side is where the
-// records come from (arrays or textures) and the loops over springs.
+// XPBD constraint updates, the IMPLICIT prediction, spring force and Hessian block, and tethers, for
+// the CPU kernels (backend/cpu/kernels.h, implicit_solve.cpp) and the GLES simulation passes
+// (sim.vert.glsl), written once in the common subset of glm and GLSL (as collide_shape.h: C++
+// includes it through backend/cpu/glsl.h). What stays on each side is where the records come from
+// (arrays or textures) and the loops over springs.
 #ifndef DRAPE_SHADERS_SUBSTEP_H
 #define DRAPE_SHADERS_SUBSTEP_H
 
@@ -92,6 +93,41 @@ DRAPE_INLINE float pbd_coefficient(float wi, float wj, uint ci, uint cj, float k
 // displacement over the substep so far.
 DRAPE_INLINE float xpbd_delta(float constraint, float alpha, float lambda, float gamma, vec3 n, vec3 dij, float coef) {
     return (-constraint - alpha * lambda - gamma * dot(n, dij)) * coef;
+}
+
+// IMPLICIT (kernels::implicit_residual's Phi(d) = sum_i |d_i - y_i|^2 / (2 w_i h^2) + sum_springs
+// k/2 (|x_i - x_j| - L)^2 plus a dashpot kd along each spring): the prediction of a substep from the
+// last displacement d and the external acceleration a. Returns the target y = d h/h_prev + a h (h +
+// h_prev)/2 (verlet_displacement) and sets `first`, the first iterate, to the inertia alone d h/h_prev:
+// at rest it is exactly 0, so a substep that stays at rest is one where the springs balance the
+// external forces exactly.
+DRAPE_INLINE vec3 implicit_predict(vec3 d, float h_ratio, vec3 a, float h, float accel_h, DRAPE_OUT(vec3) first) {
+    first = d * h_ratio;
+    return first + a * (h * accel_h);
+}
+
+// IMPLICIT force (N) on particle i from one spring, -grad_i of its share of Phi: Hooke's k (len - rest)
+// plus the dashpot kd_h = kd/h on the relative displacement dij = d_i - d_j over the substep, along n
+// (n, len: direction of x_i - x_j at the iterate).
+DRAPE_INLINE vec3 implicit_spring_force(vec3 n, float len, vec3 dij, float rest, float k, float kd_h) {
+    return -(k * (len - rest) + kd_h * dot(n, dij)) * n;
+}
+
+// IMPLICIT: a spring's stiffness across itself in the Hessian of Phi, its tension over its length
+// k (1 - rest/len) (0 at zero length). Compressed it is negative and the Hessian indefinite: the CPU
+// clamps it at 0 (magnitude false: the step lengths need the true curvature where it is positive), the
+// GLES block-Jacobi step takes its magnitude (magnitude true: its block must bound the spring's whole
+// term, see sim.vert.glsl jacobi_step).
+DRAPE_INLINE float implicit_tension(float len, float rest, float k, bool magnitude) {
+    if (!(len > 0.0f)) return 0.0f;
+    float t = 1.0f - rest / len;
+    return k * (magnitude ? abs(t) : max(0.0f, t));
+}
+
+// IMPLICIT: a spring's 3x3 block of the Hessian of Phi on x_i (kd_h = kd/h; the dashpot's change of
+// direction is left out): (k + kd_h) n n^T along it plus `across` (implicit_tension) (I - n n^T).
+DRAPE_INLINE mat3 implicit_spring_block(vec3 n, float k, float kd_h, float across) {
+    return (k + kd_h - across) * outerProduct(n, n) + mat3(across);
 }
 
 // Touch drag weight (paper section IV, eq. 9, with the exponent's minus sign restored), clamped to 1 so

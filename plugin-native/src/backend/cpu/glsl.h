@@ -11,6 +11,8 @@
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -21,8 +23,10 @@ using glm::abs;
 using glm::cross;
 using glm::dot;
 using glm::ivec3;
+using glm::mat3;
 using glm::max;
 using glm::min;
+using glm::outerProduct;
 using glm::vec3;
 using glm::vec4;
 using std::exp;

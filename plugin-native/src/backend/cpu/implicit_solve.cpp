@@ -311,8 +311,8 @@ void ImplicitSolve::block_hessian(const kernels::SubstepContext& c, const Partic
             kernels::for_active_springs(c, i, [&](uint32_t j, float rest, float k) {
                 float len;
                 const glm::vec3 n = kernels::direction(xi - (glm::vec3(start[j]) + glm::vec3(disp[j])), &len);
-                const float across = len > 0.0f ? k * std::max(0.0f, 1.0f - rest / len) : 0.0f;
-                block += (k + kd_h - across) * glm::outerProduct(n, n) + glm::mat3(across);
+                block += kernels::glsl::implicit_spring_block(n, k, kd_h,
+                                                              kernels::glsl::implicit_tension(len, rest, k, false));
             });
             block_inv_[i] = glm::inverse(block);
         }

@@ -217,20 +217,18 @@ inline void constraint_iteration(const SubstepContext& c, const float* coef, con
     }
 }
 
-/// IMPLICIT prediction: the target y = d h/h_prev + a h (h + h_prev)/2 (inertia and external
-/// forces, as predict<false>) and the first iterate d h/h_prev (inertia alone). The first iterate
-/// must not contain the external forces: at rest it is then exactly 0, and a step that stays at
-/// rest is one where the springs balance them exactly (see implicit_residual).
+/// IMPLICIT prediction (glsl::implicit_predict): the target y = d h/h_prev + a h (h + h_prev)/2
+/// (inertia and external forces, as predict<false>) and the first iterate d h/h_prev (inertia alone,
+/// so that at rest it is exactly 0: see implicit_residual).
 inline void implicit_predict(const SubstepContext& c, const Particle* x, const Particle* d, Particle* target,
                              Particle* first, uint32_t begin, uint32_t end) {
     const float inv_hp = 1.0f / c.h_prev;
     for (uint32_t i = begin; i < end; ++i) {
         const float wi = x[i].w;
         glm::vec3 inertia(0.0f), y(0.0f);
-        if (wi != 0.0f) {
-            inertia = glm::vec3(d[i]) * c.h_ratio;
-            y = inertia + external_accel(c, glm::vec3(d[i]) * inv_hp) * (c.h * c.accel_h);
-        }
+        if (wi != 0.0f)
+            y = glsl::implicit_predict(glm::vec3(d[i]), c.h_ratio, external_accel(c, glm::vec3(d[i]) * inv_hp), c.h,
+                                       c.accel_h, inertia);
         target[i] = Particle(y, wi);
         first[i] = Particle(inertia, wi);
     }
@@ -263,7 +261,7 @@ inline double implicit_residual(const SubstepContext& c, const Particle* disp, c
                 const glm::vec3 dij = di - glm::vec3(disp[j]);
                 float len;
                 const glm::vec3 n = direction((si - glm::vec3(start[j])) + dij, &len);
-                r -= (k * (len - rest) + kd_h * glm::dot(n, dij)) * n;
+                r += glsl::implicit_spring_force(n, len, dij, rest, k, kd_h);
             });
             r -= (di - glm::vec3(target[i])) * (inv_h2 / wi);
             if (p) rp += double(glm::dot(r, glm::vec3(p[i])));
@@ -275,9 +273,8 @@ inline double implicit_residual(const SubstepContext& c, const Particle* disp, c
 
 /// IMPLICIT: the curvature p^T H p of Phi (implicit_residual) along p, at disp, over the masses and
 /// springs of particles [begin, end) in double. H has each spring's transverse stiffness clamped at
-/// 0, so that it is positive definite; per spring, on p_i - p_j,
-///   (k + kd/h) n n^T + k max(0, 1 - L/l) (I - n n^T)
-/// (the dashpot's change of direction is left out). p^T H p is a sum over springs, so each spring
+/// 0, so that it is positive definite; per spring, on p_i - p_j, glsl::implicit_spring_block with
+/// glsl::implicit_tension(magnitude false): (k + kd/h) n n^T + k max(0, 1 - L/l) (I - n n^T). p^T H p is a sum over springs, so each spring
 /// is counted once, from its lower-indexed end (from its free end if the other is kinematic), and
 /// no H p is stored. p must be 0 on kinematic particles.
 inline double implicit_curvature(const SubstepContext& c, const Particle* disp, const Particle* start,
@@ -297,7 +294,7 @@ inline double implicit_curvature(const SubstepContext& c, const Particle* disp, 
             const glm::vec3 n = direction(xi - (glm::vec3(start[j]) + glm::vec3(disp[j])), &len);
             const glm::vec3 dp = pi - glm::vec3(p[j]);
             const float along = glm::dot(n, dp);
-            const float across = len > 0.0f ? k * std::max(0.0f, 1.0f - rest / len) : 0.0f;
+            const float across = glsl::implicit_tension(len, rest, k, false);
             e += (k + kd_h) * along * along + across * (glm::dot(dp, dp) - along * along);
         });
         sum += double(e);

@@ -23,8 +23,8 @@
 namespace drape::gles {
 namespace {
 
-/// XPBD lambdas ride in the record as vec4s; sim.vert.glsl declares up to 8 (32 slots).
-constexpr uint32_t kMaxLambdaVec4 = 8;
+/// XPBD lambdas ride in the record as vec4s, as many as sim.vert.glsl declares (layout.h).
+constexpr uint32_t kMaxLambdaVec4 = DRAPE_MAX_LAMBDA_VEC4;
 
 enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3, kTether = 4, kInteract = 5, kMove = 6, kStill = 7 };  // kCommit: last iteration
 // Uniforms outside the DrapeSim block (sim_uniforms.h): per substep, per collider set, per rigid
