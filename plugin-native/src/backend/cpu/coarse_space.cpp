@@ -97,12 +97,12 @@ void CoarseSpace::assemble(const kernels::SubstepContext& c, const Particle* sta
             const glm::vec3 xj = pos(j), d = xi - xj;
             float len;
             const glm::vec3 n = kernels::direction(d, &len);
-            const float across = len > 0.0f ? k * std::max(0.0f, 1.0f - rest / len) : 0.0f;
+            const float across = kernels::glsl::implicit_tension(len, rest, k, false);
             if (patch_[j] == int32_t(p)) {
                 if (j > i) self_rr += across * (glm::mat3(glm::dot(d, d)) - glm::outerProduct(d, d));
                 return;
             }
-            const glm::mat3 kij = (k + kd_h - across) * glm::outerProduct(n, n) + glm::mat3(across);
+            const glm::mat3 kij = kernels::glsl::implicit_spring_block(n, k, kd_h, across);
             own += kij;
             if (patch_[j] < 0) return;  // kinematic: G_j = 0
             const uint32_t q = uint32_t(patch_[j]);
