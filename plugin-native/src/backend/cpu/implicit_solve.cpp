@@ -190,11 +190,14 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         for (uint32_t i = 0; i < uint32_t(r_.size()); ++i)
             if (contact_normal[i] != glm::vec3(0.0f)) in_contact_.push_back(i);
     normal_ = in_contact_.empty() ? nullptr : contact_normal;
-    // r at the iterate, and r . p when p is given (the line search's slope at the new point). At a
-    // contact r loses its inward part (p has none, so r.p loses that part's share).
-    auto residual = [&](const Particle* p) {
+    // r at the iterate, and r . p when p is given (the line search's slope at the new point); with
+    // blocks, also D (block_inv_) there. At a contact r loses its inward part (p has none, so r.p
+    // loses that part's share).
+    auto residual = [&](const Particle* p, bool blocks = false) {
         double rp = over_blocks(pool, [&](uint32_t b, uint32_t e) {
-            return kernels::implicit_residual(c, iterate, target, start, p, r_.data(), b, e);
+            return blocks ? kernels::implicit_residual<true>(c, iterate, target, start, p, r_.data(), b, e,
+                                                             block_inv_.data())
+                          : kernels::implicit_residual(c, iterate, target, start, p, r_.data(), b, e);
         });
         for (uint32_t i : in_contact_) {
             const glm::vec3 n = normal_[i];
@@ -232,8 +235,7 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
     // longer substep (a fast collider added substeps): its mass term is then smaller than the
     // Hessian's.
     const bool plain_step = max_iterations == 1 && h_ < c.h * (1.0f + kImplicitRefactor);
-    with_blocks_ = !plain_step;
-    if (with_blocks_) block_hessian(c, start, iterate, pool);
+    with_blocks_ = !plain_step;  // D comes with the first residual
     with_coarse_ = false;
     // Preconditioned nonlinear conjugate gradients: the first direction is z = P^-1 r, then
     // Polak-Ribiere (clamped at 0, which restarts on z), each with the step length of one Newton
@@ -248,7 +250,7 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
     while (it < max_iterations) {
         std::swap(r_, r_prev_);
         const bool first = it == 0;
-        double rp_new = residual(first ? nullptr : p_.data());
+        double rp_new = residual(first ? nullptr : p_.data(), first && with_blocks_);
         bool restart = first;
         if (!first && rp_prev + rp_new < 0) {
             move(p_, -0.5f * alpha);
@@ -291,33 +293,6 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         rp_prev = rp;
     }
     return it;
-}
-
-void ImplicitSolve::block_hessian(const kernels::SubstepContext& c, const Particle* start, const Particle* disp,
-                                  ThreadPool* pool) {
-    // Per free particle the inverse of its 3x3 block of H (implicit_curvature's clamped Hessian) at
-    // the first iterate: I/(w h^2) + sum over its springs (k + kd/h) n n^T + T (I - n n^T).
-    const float kd_h = c.damping / c.h;
-    const float inv_h2 = 1.0f / (c.h * c.h);
-    over_blocks(pool, [&](uint32_t b, uint32_t e) {
-        for (uint32_t i = b; i < e; ++i) {
-            const float wi = disp[i].w;
-            if (wi == 0.0f) {
-                block_inv_[i] = glm::mat3(0.0f);
-                continue;
-            }
-            const glm::vec3 xi = glm::vec3(start[i]) + glm::vec3(disp[i]);
-            glm::mat3 block(inv_h2 / wi);
-            kernels::for_active_springs(c, i, [&](uint32_t j, float rest, float k) {
-                float len;
-                const glm::vec3 n = kernels::direction(xi - (glm::vec3(start[j]) + glm::vec3(disp[j])), &len);
-                block += kernels::glsl::implicit_spring_block(n, k, kd_h,
-                                                              kernels::glsl::implicit_tension(len, rest, k, false));
-            });
-            block_inv_[i] = glm::inverse(block);
-        }
-        return 0.0;
-    });
 }
 
 template <class Fn>

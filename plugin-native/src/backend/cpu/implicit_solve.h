@@ -12,9 +12,10 @@
 //   fell in slow motion (bench part 'fall', 17^2 sheet from two corners, fall 0.74 / 0.28 as far
 //   as MASS_SPRING at 2e4 / 1e5 N/m), and a taut sheet's sag swung at rest by 0.1-1 % for good
 //   (the fall's energy kept by modes the solve barely touched).
-// - D: per free particle its 3x3 block of H at the solve's first iterate (block_hessian), M/h^2
-//   plus per spring (k + kd/h) n n^T + T (I - n n^T): ~h^2/m where A^-1 is ~0 (motion across the
-//   springs), ~0 where A^-1 is right (along stiff springs). Fall then 0.97 / 0.76.
+// - D: per free particle its 3x3 block of H at the solve's first iterate, M/h^2 plus per spring
+//   (k + kd/h) n n^T + T (I - n n^T), built by the first residual pass (kernels::implicit_residual
+//   <true>): ~h^2/m where A^-1 is ~0 (motion across the springs), ~0 where A^-1 is right (along
+//   stiff springs). Fall then 0.97 / 0.76.
 // - G Hc^-1 G^T: H restricted to the rigid motions of a few patches (coarse_space.h). A cloth
 //   swinging about its pins or folding turns its springs without stretching them, a motion
 //   coordinated over the whole cloth that A charges every spring's k and per-particle D cannot
@@ -94,8 +95,6 @@ class ImplicitSolve {
     struct Dots {
         double rz = 0, z_r_prev = 0;  ///< r.z and z.r_prev
     };
-    /// block_inv_ at start + disp, for this solve.
-    void block_hessian(const kernels::SubstepContext& c, const Particle* start, const Particle* disp, ThreadPool* pool);
     /// z = A^-1 r (+ D^-1 r: with_blocks_) on the free particles (z stays 0 on kinematic ones), with r.z and z.r_prev.
     Dots precondition(const Particle* r, const Particle* r_prev, Particle* z, ThreadPool* pool);
     // The substitutions with L's values (one per entry: A's three axes are equal).
@@ -122,7 +121,7 @@ class ImplicitSolve {
     // Conjugate gradients, one record per particle: residual, the previous one, preconditioned
     // residual and direction.
     std::vector<Particle> r_, r_prev_, z_, p_;
-    std::vector<glm::mat3> block_inv_;  ///< per particle the inverse of its block of H (block_hessian)
+    std::vector<glm::mat3> block_inv_;  ///< per particle the inverse of its block of H (D)
     bool with_blocks_ = true;           ///< this solve's preconditioner adds D^-1 r (not a plain 1-iteration step)
     CoarseSpace coarse_;
     bool with_coarse_ = false;          ///< this solve's preconditioner adds the coarse correction

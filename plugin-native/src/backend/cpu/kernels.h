@@ -18,6 +18,8 @@
 #include <cstdint>
 
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -245,9 +247,14 @@ inline void implicit_predict(const SubstepContext& c, const Particle* x, const P
 /// iteration count (one Jacobi iteration of XPBD rests softer than its springs).
 /// Returns sum_i r_i . p_i over the range in double (the conjugate-gradient solve's line search
 /// needs it; 0 when p is null), so that no second pass reads r.
+/// kBlocks: also writes block_inv[i], the inverse of particle i's 3x3 block of the clamped Hessian of
+/// Phi (implicit_curvature's H): I/(w_i h^2) plus its springs' glsl::implicit_spring_block (0 for
+/// kinematic particles). The springs' directions are at hand here, so the blocks cost no pass of
+/// their own.
+template <bool kBlocks = false>
 inline double implicit_residual(const SubstepContext& c, const Particle* disp, const Particle* target,
                                 const Particle* start, const Particle* p, Particle* residual, uint32_t begin,
-                                uint32_t end) {
+                                uint32_t end, glm::mat3* block_inv = nullptr) {
     const float kd_h = c.damping / c.h;
     const float inv_h2 = 1.0f / (c.h * c.h);
     double rp = 0;
@@ -257,14 +264,20 @@ inline double implicit_residual(const SubstepContext& c, const Particle* disp, c
         if (wi != 0.0f) {
             const glm::vec3 di(disp[i]);
             const glm::vec3 si(start[i]);
+            glm::mat3 block(inv_h2 / wi);
             for_active_springs(c, i, [&](uint32_t j, float rest, float k) {
                 const glm::vec3 dij = di - glm::vec3(disp[j]);
                 float len;
                 const glm::vec3 n = direction((si - glm::vec3(start[j])) + dij, &len);
                 r += glsl::implicit_spring_force(n, len, dij, rest, k, kd_h);
+                if (kBlocks)
+                    block += glsl::implicit_spring_block(n, k, kd_h, glsl::implicit_tension(len, rest, k, false));
             });
             r -= (di - glm::vec3(target[i])) * (inv_h2 / wi);
             if (p) rp += double(glm::dot(r, glm::vec3(p[i])));
+            if (kBlocks) block_inv[i] = glm::inverse(block);
+        } else if (kBlocks) {
+            block_inv[i] = glm::mat3(0.0f);
         }
         residual[i] = Particle(r, wi);
     }
