@@ -125,9 +125,12 @@ DRAPE_INLINE float implicit_tension(float len, float rest, float k, bool magnitu
 }
 
 // IMPLICIT: a spring's 3x3 block of the Hessian of Phi on x_i (kd_h = kd/h; the dashpot's change of
-// direction is left out): (k + kd_h) n n^T along it plus `across` (implicit_tension) (I - n n^T).
+// direction is left out): (k + kd_h) n n^T along it plus `across` (implicit_tension) (I - n n^T),
+// that is implicit_block_along(...) n n^T + across I.
+DRAPE_INLINE float implicit_block_along(float k, float kd_h, float across) { return k + kd_h - across; }
+
 DRAPE_INLINE mat3 implicit_spring_block(vec3 n, float k, float kd_h, float across) {
-    return (k + kd_h - across) * outerProduct(n, n) + mat3(across);
+    return implicit_block_along(k, kd_h, across) * outerProduct(n, n) + mat3(across);
 }
 
 // Touch drag weight (paper section IV, eq. 9, with the exponent's minus sign restored), clamped to 1 so

@@ -159,7 +159,7 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     y_.resize(m);
     sep_sum_.resize(size_t(sep_count) * kParts);
     for (std::vector<Particle>* v : {&r_, &r_prev_, &z_, &p_}) v->assign(n, Particle(0.0f));
-    block_inv_.assign(n, glm::mat3(0.0f));
+    block_inv_.assign(n, kernels::SymMat3());
     in_contact_.reserve(n);
     block_sum_.assign((n + kBlock - 1) / kBlock, 0.0);
     coarse_.build(topo, x);

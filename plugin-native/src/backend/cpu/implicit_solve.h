@@ -121,7 +121,7 @@ class ImplicitSolve {
     // Conjugate gradients, one record per particle: residual, the previous one, preconditioned
     // residual and direction.
     std::vector<Particle> r_, r_prev_, z_, p_;
-    std::vector<glm::mat3> block_inv_;  ///< per particle the inverse of its block of H (D)
+    std::vector<kernels::SymMat3> block_inv_;  ///< per particle the inverse of its block of H (D)
     bool with_blocks_ = true;           ///< this solve's preconditioner adds D^-1 r (not a plain 1-iteration step)
     CoarseSpace coarse_;
     bool with_coarse_ = false;          ///< this solve's preconditioner adds the coarse correction

@@ -18,8 +18,6 @@
 #include <cstdint>
 
 #include <glm/geometric.hpp>
-#include <glm/mat3x3.hpp>
-#include <glm/matrix.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -219,6 +217,30 @@ inline void constraint_iteration(const SubstepContext& c, const float* coef, con
     }
 }
 
+/// A symmetric 3x3 matrix in 6 floats (a mat3 takes 9): the IMPLICIT solve's per-particle blocks.
+struct SymMat3 {
+    glm::vec3 diag{0.0f};  ///< xx, yy, zz
+    glm::vec3 off{0.0f};   ///< xy, xz, yz
+
+    /// += s n n^T
+    void add_outer(float s, const glm::vec3& n) {
+        const glm::vec3 a = s * n;
+        diag += a * n;
+        off += glm::vec3(a.x * n.y, a.x * n.z, a.y * n.z);
+    }
+    glm::vec3 operator*(const glm::vec3& v) const {
+        return diag * v + glm::vec3(off.x * v.y + off.y * v.z, off.x * v.x + off.z * v.z, off.y * v.x + off.z * v.y);
+    }
+    /// The inverse by cofactors (the matrix must be invertible; the blocks are positive definite).
+    SymMat3 inverse() const {
+        const float a = diag.x, b = diag.y, c = diag.z, d = off.x, e = off.y, f = off.z;
+        const glm::vec3 cof_diag(b * c - f * f, a * c - e * e, a * b - d * d);
+        const glm::vec3 cof_off(e * f - d * c, d * f - e * b, d * e - a * f);
+        const float inv_det = 1.0f / (a * cof_diag.x + d * cof_off.x + e * cof_off.y);
+        return {cof_diag * inv_det, cof_off * inv_det};
+    }
+};
+
 /// IMPLICIT prediction (glsl::implicit_predict): the target y = d h/h_prev + a h (h + h_prev)/2
 /// (inertia and external forces, as predict<false>) and the first iterate d h/h_prev (inertia alone,
 /// so that at rest it is exactly 0: see implicit_residual).
@@ -248,13 +270,13 @@ inline void implicit_predict(const SubstepContext& c, const Particle* x, const P
 /// Returns sum_i r_i . p_i over the range in double (the conjugate-gradient solve's line search
 /// needs it; 0 when p is null), so that no second pass reads r.
 /// kBlocks: also writes block_inv[i], the inverse of particle i's 3x3 block of the clamped Hessian of
-/// Phi (implicit_curvature's H): I/(w_i h^2) plus its springs' glsl::implicit_spring_block (0 for
-/// kinematic particles). The springs' directions are at hand here, so the blocks cost no pass of
-/// their own.
+/// Phi (implicit_curvature's H): I/(w_i h^2) plus its springs' blocks (glsl::implicit_spring_block,
+/// summed as iso I + sum along n n^T in symmetric form); 0 for kinematic particles. The springs'
+/// directions are at hand here, so the blocks cost no pass of their own.
 template <bool kBlocks = false>
 inline double implicit_residual(const SubstepContext& c, const Particle* disp, const Particle* target,
                                 const Particle* start, const Particle* p, Particle* residual, uint32_t begin,
-                                uint32_t end, glm::mat3* block_inv = nullptr) {
+                                uint32_t end, SymMat3* block_inv = nullptr) {
     const float kd_h = c.damping / c.h;
     const float inv_h2 = 1.0f / (c.h * c.h);
     double rp = 0;
@@ -264,20 +286,27 @@ inline double implicit_residual(const SubstepContext& c, const Particle* disp, c
         if (wi != 0.0f) {
             const glm::vec3 di(disp[i]);
             const glm::vec3 si(start[i]);
-            glm::mat3 block(inv_h2 / wi);
+            float iso = inv_h2 / wi;
+            SymMat3 nn;  // sum of along n n^T
             for_active_springs(c, i, [&](uint32_t j, float rest, float k) {
                 const glm::vec3 dij = di - glm::vec3(disp[j]);
                 float len;
                 const glm::vec3 n = direction((si - glm::vec3(start[j])) + dij, &len);
                 r += glsl::implicit_spring_force(n, len, dij, rest, k, kd_h);
-                if (kBlocks)
-                    block += glsl::implicit_spring_block(n, k, kd_h, glsl::implicit_tension(len, rest, k, false));
+                if (kBlocks) {
+                    const float across = glsl::implicit_tension(len, rest, k, false);
+                    iso += across;
+                    nn.add_outer(glsl::implicit_block_along(k, kd_h, across), n);
+                }
             });
             r -= (di - glm::vec3(target[i])) * (inv_h2 / wi);
             if (p) rp += double(glm::dot(r, glm::vec3(p[i])));
-            if (kBlocks) block_inv[i] = glm::inverse(block);
+            if (kBlocks) {
+                nn.diag += iso;
+                block_inv[i] = nn.inverse();
+            }
         } else if (kBlocks) {
-            block_inv[i] = glm::mat3(0.0f);
+            block_inv[i] = SymMat3();
         }
         residual[i] = Particle(r, wi);
     }
