@@ -458,7 +458,9 @@ def rest(out, rows, meta, lines):
             lines.append(f"- **{scene} {size}^2, default {rest_setting(d)}** (star on precision_rest.png): "
                          f"{num(d['cpu_ms_median']):.3g} ms/step, {'hanging length' if scene == 'curtain' else 'centre sag'} "
                          f"{100 * num(d['length_error']):.3g} % off, "
-                         f"worst vertex {num(d['vertex_error']):.3g} x the largest displacement. "
+                         f"worst vertex {num(d['vertex_error']):.3g} x the largest displacement"
+                         + {"1": f"; CPU_THREADED ({d['threads']} threads) at rest: the same bits. ",
+                            "0": f"; CPU_THREADED ({d['threads']} threads) at rest: DIFFERENT bits. "}.get(d.get("threaded_same"), ". ")
                          + (f"Cheapest measured setting within 0.5 %: {rest_setting(best)}, "
                             f"{num(best['cpu_ms_median']):.3g} ms ({num(best['cpu_ms_median']) / num(d['cpu_ms_median']):.2g} x "
                             f"the default's cost)." if best else "No measured setting is within 0.5 %."))

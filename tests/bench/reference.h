@@ -75,20 +75,32 @@ inline void add_coarse_displacement(std::vector<double>& x, uint32_t n, const st
         }
 }
 
+/// What a Newton solve took (solve_static's optional out-parameter).
+struct SolveStats {
+    int newton = 0, factorisations = 0, cg = 0;  ///< iterations, LDL^T factorisations, CG iterations
+};
+
 /// Minimises the energy from x (3 doubles per particle, updated in place). mass[i] = 0 pins i.
-/// Returns the final max-norm of the gradient over free particles (N).
+/// Returns the final max-norm of the gradient over free particles (N); it stops below 1e-11 N.
 ///
-/// Each iteration factorises the exact Hessian when it is positive definite (near the minimum,
-/// so convergence ends quadratic) and otherwise the projected one (compressed springs' geometric
-/// part dropped). Projected alone converged linearly (x0.85 per iteration) on a sheet whose
-/// equilibrium has compressed springs: 112 iterations at 33^2.
+/// Each Newton step solves with the exact Hessian when it is positive definite (near the minimum,
+/// so convergence ends quadratic) and otherwise with the projected one (compressed springs'
+/// geometric part dropped). Projected alone converged linearly (x0.85 per iteration) on a sheet
+/// whose equilibrium has compressed springs: 112 iterations at 33^2.
+///
+/// The step comes from conjugate gradients to 1e-6 of the gradient's norm, preconditioned by a
+/// sparse LDL^T of the Hessian at an earlier iterate, refactorised only when CG needs about a
+/// factorisation's work: from a start interpolated from the size below the Hessian changes
+/// little over the solve, and one factorisation of a 257^2 grid (198k unknowns) takes minutes
+/// (Eigen's simplicial LDL^T, the only one here) while a CG iteration takes about a second.
 ///
 /// The Hessian's sparsity pattern is that of the spring list, the same every iteration: it is
 /// built and ordered (Eigen's analyzePattern, AMD) once, and each iteration only refills the
 /// values through per-spring slots and factorises numerically. Re-analysing per iteration made
 /// the 129^2 sheet take minutes.
 inline double solve_static(std::vector<double>& x, const std::vector<double>& mass,
-                           const std::vector<RefSpring>& springs, const double g[3], int max_newton = 200) {
+                           const std::vector<RefSpring>& springs, const double g[3], SolveStats* stats = nullptr,
+                           int max_newton = 200) {
     const int n = int(mass.size());
     std::vector<int> dof(n, -1);
     int nd = 0;
@@ -148,8 +160,24 @@ inline double solve_static(std::vector<double>& x, const std::vector<double>& ma
     }
     std::vector<int> diagonal(static_cast<size_t>(nd));
     for (int k = 0; k < nd; ++k) diagonal[size_t(k)] = index_of(k, k);
+    // The preconditioner P: H's entries between equal axes (row and column dof % 3 equal), so
+    // its LDL^T falls apart into three grids of one unknown per particle. from[k]: H's value
+    // index of P's k-th value (both in column order).
+    Eigen::SparseMatrix<double> P(nd, nd);
+    std::vector<int> from;
+    {
+        std::vector<Eigen::Triplet<double>> trip;
+        for (int col = 0; col < nd; ++col)
+            for (int k = H.outerIndexPtr()[col]; k < H.outerIndexPtr()[col + 1]; ++k)
+                if (H.innerIndexPtr()[k] % 3 == col % 3) {
+                    trip.emplace_back(H.innerIndexPtr()[k], col, 0.0);
+                    from.push_back(k);
+                }
+        P.setFromTriplets(trip.begin(), trip.end());
+        P.makeCompressed();
+    }
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
-    ldlt.analyzePattern(H);
+    ldlt.analyzePattern(P);
     double* value = H.valuePtr();
 
     double gnorm = INFINITY;
@@ -192,17 +220,76 @@ inline double solve_static(std::vector<double>& x, const std::vector<double>& ma
         // singular (out-of-plane directions of a planar, unstretched patch).
         for (int k = 0; k < nd; ++k) value[diagonal[size_t(k)]] += 1e-9 * (1.0 + value[diagonal[size_t(k)]]);
     };
+    SolveStats st;
+    // CG iterations allowed before refactorising: about what a factorisation costs, counted as
+    // sum over L's columns of count^2 flops, against 2 nnz(L) + nnz(H) per CG iteration.
+    int max_cg = 0;
+    // The preconditioner: H as assembled (exact, or projected where the exact one is not
+    // positive definite), factorised.
+    auto factor = [&] {
+        auto factorize = [&] {
+            ++st.factorisations;
+            for (size_t k = 0; k < from.size(); ++k) P.valuePtr()[k] = value[from[k]];
+            ldlt.factorize(P);
+        };
+        factorize();
+        if (ldlt.info() != Eigen::Success || ldlt.vectorD().minCoeff() <= 0) {
+            assemble(true);
+            factorize();
+        }
+        const auto& L = ldlt.matrixL().nestedExpression();
+        double cost = 0;
+        for (int c = 0; c < nd; ++c) cost += std::pow(double(L.outerIndexPtr()[c + 1] - L.outerIndexPtr()[c]), 2);
+        max_cg = int(std::clamp(cost / (2.0 * L.nonZeros() + H.nonZeros()), 2.0, 1000.0));
+        return ldlt.info() == Eigen::Success;
+    };
+    // H step = -grad by CG preconditioned with P's factor, to 1e-6 of |grad|: its iterations,
+    // -1 on a direction of non-positive curvature (H not positive definite), limit + 1 if not
+    // converged within limit.
+    Eigen::VectorXd step(nd), r(nd), z(nd), p(nd), hp(nd);
+    auto pcg = [&](int limit) {
+        step.setZero();
+        r = -grad;
+        z = ldlt.solve(r);
+        p = z;
+        double rz = r.dot(z);
+        const double tol = 1e-6 * grad.norm();
+        for (int k = 1; k <= limit; ++k) {
+            ++st.cg;
+            hp.noalias() = H * p;
+            const double php = p.dot(hp);
+            if (!(php > 0)) return -1;
+            step += (rz / php) * p;
+            r -= (rz / php) * hp;
+            if (r.norm() <= tol) return k;
+            z = ldlt.solve(r);
+            const double rz1 = r.dot(z);
+            p = z + (rz1 / rz) * p;
+            rz = rz1;
+        }
+        return limit + 1;
+    };
+    // The step with the exact Hessian, or the projected one where the exact one is not positive
+    // definite; CG's iterations.
+    auto newton_step = [&](int limit) {
+        const int k = pcg(limit);
+        if (k >= 0) return k;
+        assemble(true);
+        return pcg(limit);
+    };
+    constexpr int kMaxCg = 10000;
+    int fresh = 0;  // CG iterations of the step right after the last factorisation
     for (int it = 0; it < max_newton; ++it) {
         assemble(false);
         gnorm = grad.lpNorm<Eigen::Infinity>();
         if (gnorm < 1e-11) break;
-        ldlt.factorize(H);
-        if (ldlt.info() != Eigen::Success || ldlt.vectorD().minCoeff() <= 0) {
-            assemble(true);
-            ldlt.factorize(H);
-            if (ldlt.info() != Eigen::Success) break;
+        ++st.newton;
+        int k = it > 0 ? newton_step(fresh + max_cg) : -1;
+        if (k < 0 || k > fresh + max_cg) {  // no factor yet, or a stale one: factorise this H
+            if (!factor()) break;
+            fresh = k = newton_step(kMaxCg);
+            if (k < 0 || k > kMaxCg) break;
         }
-        Eigen::VectorXd step = ldlt.solve(-grad);
         const double e0 = energy(x);
         const double slope = grad.dot(step);
         double t = 1.0;
@@ -214,6 +301,7 @@ inline double solve_static(std::vector<double>& x, const std::vector<double>& ma
         }
         x.swap(trial);
     }
+    if (stats) *stats = st;
     return gnorm;
 }
 
