@@ -571,8 +571,8 @@ double thread_cpu_ms() {
 /// budget comes from the library). Up to `rest_size` a setting runs to rest; larger sizes up to
 /// `max_size` only take part in the timing rounds (MASS_SPRING at 129^2: 320 substeps, 0.5 s of
 /// CPU and 1.2 s on the loaded 2-core machine per frame, so 600 frames to rest would be 12 minutes
-/// of the run). At 257^2 only the default and IMPLICIT auto run to rest (XPBD's rest error at
-/// 129^2 is already 2-180 x the 0.5 % target, and IMPLICIT 1x1 rests where IMPLICIT auto does);
+/// of the run). At 257^2 only the default and IMPLICIT auto run to rest (no XPBD setting here
+/// rests within 0.5 % from 65^2 on, and IMPLICIT 1x1 rests where IMPLICIT auto does);
 /// MASS_SPRING is left out there: its stability bound needs ~1300 substeps per frame, more than
 /// one step may take (DRAPE_MAX_SUBSTEPS), so a frame would be rolled back.
 struct RestConfig {
