@@ -2,7 +2,7 @@
 // (docs/accuracy.md). Uses the library through the C ABI only and writes CSV
 // files into --out; tests/bench/plot.py turns them into PNGs and REPORT.md.
 //
-//   drape_bench [--quick] [--out DIR] [--only a,b,...] [--threads N]
+//   drape_bench [--quick] [--out DIR] [--only a,b,...] [--threads N] [--rest-largest N]
 //   parts: throughput, threads, precision, rest, stiff, fall, stress, vibration, stages
 //
 // Timings are wall-clock medians over repeated steps of one run on a shared machine; they are
@@ -42,6 +42,7 @@ struct Options {
     bool quick = false;
     std::set<std::string> only;
     uint32_t threads = 2;  ///< CPU_THREADED workers (including the caller); this machine has 2 cores
+    uint32_t rest_largest = 257;  ///< the rest part's largest size (257^2's references take the longest)
     bool wants(const char* part) const { return only.empty() || only.count(part); }
 };
 
@@ -597,7 +598,10 @@ std::vector<RestConfig> rest_configs(const Options& o) {
 /// of the 257^2 grid (198k unknowns) takes minutes.
 std::vector<uint32_t> rest_sizes(const Options& o, bool curtain) {
     if (o.quick) return curtain ? std::vector<uint32_t>{17, 33} : std::vector<uint32_t>{17};
-    return {17, 33, 65, 129, 257};
+    std::vector<uint32_t> sizes;
+    for (uint32_t n : {17u, 33u, 65u, 129u, 257u})
+        if (n <= o.rest_largest) sizes.push_back(n);
+    return sizes;
 }
 int rest_runs(const Options& o) {
     int n = 0;
@@ -1841,12 +1845,14 @@ int main(int argc, char** argv) {
             o.out = argv[++i];
         else if (a == "--threads" && i + 1 < argc)
             o.threads = uint32_t(std::atoi(argv[++i]));
+        else if (a == "--rest-largest" && i + 1 < argc)
+            o.rest_largest = uint32_t(std::atoi(argv[++i]));
         else if (a == "--only" && i + 1 < argc) {
             std::stringstream ss(argv[++i]);
             for (std::string p; std::getline(ss, p, ',');) o.only.insert(p);
         } else {
             std::fprintf(stderr,
-                         "usage: drape_bench [--quick] [--out DIR] [--threads N] [--only "
+                         "usage: drape_bench [--quick] [--out DIR] [--threads N] [--rest-largest N] [--only "
                          "throughput,threads,precision,rest,stiff,fall,stress,vibration,stages]\n");
             return a == "--help" || a == "-h" ? 0 : 2;
         }
