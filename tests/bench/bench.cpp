@@ -497,26 +497,29 @@ void run_threads(const Options& o) {
     const std::vector<uint32_t> sizes =
         o.quick ? std::vector<uint32_t>{32} : std::vector<uint32_t>{64, 128, 256};
     const uint32_t counts[] = {1, 2, 3, 4};
+    // The default model (IMPLICIT: the "two threads >= 1.8x one") and XPBD.
+    const uint32_t models[] = {DRAPE_MODEL_IMPLICIT, DRAPE_MODEL_XPBD};
     Csv csv(o.out + "/threads.csv",
             "size,vertices,model,backend,threads,ms_median,vertex_iter_per_s,speedup_vs_cpu");
-    g_progress.start("threads", int(sizes.size() * 5));
-    for (uint32_t n : sizes) {
-        double base_ms = NAN;
-        for (int k = -1; k < 4; ++k) {
-            GridSpec gs;
-            gs.cols = gs.rows = n;
-            gs.backend = k < 0 ? DRAPE_BACKEND_CPU : DRAPE_BACKEND_CPU_THREADED;
-            gs.threads = k < 0 ? 1 : counts[k];
-            auto sim = make_grid(gs);
-            sim->set_params(params_for(DRAPE_MODEL_XPBD));
-            Timing t = o.quick ? time_cloth(*sim, 0.1, 1.0, 5, 2) : time_cloth(*sim, 0.6, 4.0, 9, 3);
-            if (k < 0) base_ms = t.ms_median;
-            csv.row("%u,%u,xpbd,%s,%u,%.4f,%.4g,%.3f", n, sim->vertices, backend_name(gs.backend), gs.threads,
-                    t.ms_median, t.vit_per_s, base_ms / t.ms_median);
-            g_progress.tick(std::to_string(n) + "^2 " + backend_name(gs.backend) + " x" +
-                            std::to_string(gs.threads));
+    g_progress.start("threads", int(sizes.size() * 5 * std::size(models)));
+    for (uint32_t n : sizes)
+        for (uint32_t model : models) {
+            double base_ms = NAN;
+            for (int k = -1; k < 4; ++k) {
+                GridSpec gs;
+                gs.cols = gs.rows = n;
+                gs.backend = k < 0 ? DRAPE_BACKEND_CPU : DRAPE_BACKEND_CPU_THREADED;
+                gs.threads = k < 0 ? 1 : counts[k];
+                auto sim = make_grid(gs);
+                sim->set_params(params_for(model));
+                Timing t = o.quick ? time_cloth(*sim, 0.1, 1.0, 5, 2) : time_cloth(*sim, 0.6, 4.0, 9, 3);
+                if (k < 0) base_ms = t.ms_median;
+                csv.row("%u,%u,%s,%s,%u,%.4f,%.4g,%.3f", n, sim->vertices, model_name(model),
+                        backend_name(gs.backend), gs.threads, t.ms_median, t.vit_per_s, base_ms / t.ms_median);
+                g_progress.tick(std::to_string(n) + "^2 " + model_name(model) + " " + backend_name(gs.backend) +
+                                " x" + std::to_string(gs.threads));
+            }
         }
-    }
     g_progress.finish();
 }
 
