@@ -2,7 +2,7 @@
 // (docs/accuracy.md). Uses the library through the C ABI only and writes CSV
 // files into --out; tests/bench/plot.py turns them into PNGs and REPORT.md.
 //
-//   drape_bench [--quick] [--out DIR] [--only a,b,...] [--threads N] [--rest-largest N]
+//   drape_bench [--quick] [--out DIR] [--only a,b,...] [--threads N] [--rest-largest N] [--rest-models a,b]
 //   parts: throughput, threads, precision, rest, stiff, fall, stress, vibration, stages
 //
 // Timings are wall-clock medians over repeated steps of one run on a shared machine; they are
@@ -43,6 +43,9 @@ struct Options {
     std::set<std::string> only;
     uint32_t threads = 2;  ///< CPU_THREADED workers (including the caller); this machine has 2 cores
     uint32_t rest_largest = 257;  ///< the rest part's largest size (257^2's references take the longest)
+    /// The rest part's models besides the library default (model_name; empty: all). Re-timing the
+    /// IMPLICIT rows on a quiet machine alone takes minutes; XPBD and MASS_SPRING to rest take most of an hour.
+    std::set<std::string> rest_models;
     bool wants(const char* part) const { return only.empty() || only.count(part); }
 };
 
@@ -594,6 +597,10 @@ std::vector<RestConfig> rest_configs(const Options& o) {
                                    {{DRAPE_MODEL_MASS_SPRING, 0, 0}, 0, 129, 65},
                                    {{DRAPE_MODEL_XPBD, 64, 1}, 0, 257}};
     if (!o.quick) out.push_back({{DRAPE_MODEL_XPBD, 32, 1}, 0, 65});
+    if (!o.rest_models.empty())  // the default (first) always runs
+        out.erase(std::remove_if(out.begin() + 1, out.end(),
+                                 [&](const RestConfig& rc) { return !o.rest_models.count(model_name(rc.c.model)); }),
+                  out.end());
     return out;
 }
 /// Each size's Newton solve starts from the one below (bench::add_coarse_displacement), so it
@@ -1850,12 +1857,13 @@ int main(int argc, char** argv) {
             o.threads = uint32_t(std::atoi(argv[++i]));
         else if (a == "--rest-largest" && i + 1 < argc)
             o.rest_largest = uint32_t(std::atoi(argv[++i]));
-        else if (a == "--only" && i + 1 < argc) {
+        else if ((a == "--only" || a == "--rest-models") && i + 1 < argc) {
             std::stringstream ss(argv[++i]);
-            for (std::string p; std::getline(ss, p, ',');) o.only.insert(p);
+            for (std::string p; std::getline(ss, p, ',');) (a == "--only" ? o.only : o.rest_models).insert(p);
         } else {
             std::fprintf(stderr,
-                         "usage: drape_bench [--quick] [--out DIR] [--threads N] [--rest-largest N] [--only "
+                         "usage: drape_bench [--quick] [--out DIR] [--threads N] [--rest-largest N] [--rest-models "
+                         "implicit,xpbd,mass_spring] [--only "
                          "throughput,threads,precision,rest,stiff,fall,stress,vibration,stages]\n");
             return a == "--help" || a == "-h" ? 0 : 2;
         }
