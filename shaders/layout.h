@@ -32,6 +32,13 @@
 // carries; sim.vert.glsl declares that many attributes and varyings (32 slots).
 #define DRAPE_MAX_LAMBDA_VEC4 8
 
+// IMPLICIT's coarse levels on GLES (backend/gles/gles_coarse.h): members per aggregate (texels of 4
+// indices), the index that means none, and the weight of the Jacobi smoothing on the coarse levels
+// (2/3: damps a Laplacian's upper half of the spectrum by at least 1/3).
+#define DRAPE_MAX_MEMBERS 8
+#define DRAPE_NO_NODE 0xFFFFFFFFu
+#define DRAPE_COARSE_WEIGHT 0.6666667
+
 // Iterations of the swept (sphere-traced) entry search of the collision pass. Each advances by the
 // exact distance, so few are needed except for grazing motion, where a slightly late entry point
 // does no harm.

@@ -26,6 +26,15 @@
 //                            accelerated by Chebyshev (Wang 2015); iterate records (v_d, v_prev,
 //                            v_target). With DRAPE_COMMIT: two outputs, v_x = start +
 //                            displacement and v_d
+//   DRAPE_PROLONG            with DRAPE_PASS_IMPLICIT: no Jacobi step, the coarse correction of each
+//                            particle's aggregate (level 1) added to its iterate and previous iterate
+//   DRAPE_PASS_COARSE        one pass of the coarse correction (gles_coarse.h; one vertex per node of
+//                            a level, v_d = (vec3, 0)): DRAPE_COARSE_RESTRICT sums the force residual
+//                            of each level-1 node's particles at the iterate; DRAPE_COARSE_DOWN smooths
+//                            level l's residual once (Jacobi from 0) and sums what it leaves over each
+//                            level-(l+1) node's members; DRAPE_COARSE_SOLVE multiplies the coarsest
+//                            residual by the dense inverse; DRAPE_COARSE_UP is level l's smoothed
+//                            correction plus its parent's (a V-cycle, one smoothing on the way down)
 //   DRAPE_PASS_TETHER        kernels::tether after the solve of a substep (only compiled and run
 //                            when the cloth has tethers: max_stretch > 0 and kinematic particles).
 //                            Two outputs like MASS_SPRING: v_x, v_d. Own x and d as attributes,
@@ -61,7 +70,7 @@
 // floatBitsToUint(rest), group, 0); the particle table texel i = (neighbour count, active springs,
 // 0, 0). All textures are u_tex_width texels wide (row-major).
 #if !defined(DRAPE_PASS_MASS_SPRING) && !defined(DRAPE_PASS_PREDICT) && !defined(DRAPE_PASS_CONSTRAINT) && \
-    !defined(DRAPE_PASS_IMPLICIT) && !defined(DRAPE_PASS_TETHER) && !defined(DRAPE_PASS_INTERACT) && !defined(DRAPE_PASS_MOVE) && \
+    !defined(DRAPE_PASS_IMPLICIT) && !defined(DRAPE_PASS_COARSE) && !defined(DRAPE_PASS_TETHER) && !defined(DRAPE_PASS_INTERACT) && !defined(DRAPE_PASS_MOVE) && \
     !defined(DRAPE_PASS_STILL)
 #define DRAPE_PASS_MASS_SPRING 1
 #endif
@@ -129,6 +138,13 @@ uniform float u_still_limit2;        // (sleep threshold * h_prev)^2, m^2
 uniform vec2 u_chebyshev;
 in vec4 a_prev;                     // own previous iterate (displacement)
 in vec4 a_target;                   // own target y (kernels::implicit_predict)
+#endif
+#if defined(DRAPE_PASS_COARSE) || defined(DRAPE_PROLONG)
+// Coarse table (RGBA32UI) and vectors (RGBA32F: residuals R_l, corrections e_l), gles_coarse.h.
+uniform highp usampler2D u_coarse_table;
+uniform highp sampler2D u_coarse_vec;
+// Texel offsets of this pass (gles_cloth.cpp run_coarse), whole numbers in float.
+uniform vec4 u_coarse;
 #endif
 
 in vec4 a_x;                        // own record: position x (MS, PREDICT) / displacement iterate
@@ -222,7 +238,7 @@ in vec4 a_lambda7;
 #endif
 
 ivec2 texel(int t) { return ivec2(t % u_tex_width, t / u_tex_width); }
-#if defined(DRAPE_PASS_CONSTRAINT) || defined(DRAPE_PASS_IMPLICIT)
+#if defined(DRAPE_PASS_CONSTRAINT) || defined(DRAPE_PASS_IMPLICIT) || defined(DRAPE_COARSE_RESTRICT)
 vec4 fetch_x(int j) { return texelFetch(u_x, texel(j * DRAPE_RECORD), 0); }  // iterate record
 #else
 vec4 fetch_x(int j) { return texelFetch(u_x, texel(j), 0); }                 // state record
@@ -291,21 +307,13 @@ vec4 solve_slots4(Own o, int q, vec4 lambda, inout vec3 dx) {
 #endif
 #endif
 
-#ifdef DRAPE_PASS_IMPLICIT
-// The block-Jacobi step of particle i (free) on Phi(d) = sum_i |d_i - y_i|^2 / (2 w_i h^2) +
-// sum_springs k/2 (|x_i - x_j| - L)^2 + dashpots (kernels::implicit_residual): the force residual
-// r_i = -grad_i Phi and a 3x3 block D_i like Phi's Hessian block H_ii, but with each spring's
-// transverse stiffness k (1 - L/l) taken by its magnitude (implicit_tension, magnitude true): D_i is
-// positive definite, and since a spring's term in H is at most twice its share of the two blocks,
-// H <= 2 D: the damped iteration converges for the linearised problem. (Dropping a compressed
-// spring's negative transverse term instead, as the CPU's blocks do, let a stiff cloth hanging from
-// two corners oscillate at 150 % strain.) Returns D_i^-1 r_i. Neighbours' iterates from u_x, their
-// substep start from u_aux.
-vec3 jacobi_step(int row, int count, vec3 di, vec3 si, vec3 yi, float wi) {
+#if defined(DRAPE_PASS_IMPLICIT) || defined(DRAPE_COARSE_RESTRICT)
+// The force residual r_i = -grad_i Phi (see jacobi_step) at the iterate and the block D_i.
+vec3 implicit_residual(int row, int count, vec3 di, vec3 si, vec3 yi, float wi, out mat3 block) {
     float kd_h = u_damping / u_h;
     float mass_h2 = 1.0 / (wi * u_h * u_h);
     vec3 r = (yi - di) * mass_h2;
-    mat3 block = mat3(mass_h2);
+    block = mat3(mass_h2);
     for (int s = 0; s < count; ++s) {
         uvec4 nb = fetch_nbr(row + s);
         if (!active_group(nb.z)) continue;
@@ -318,8 +326,74 @@ vec3 jacobi_step(int row, int count, vec3 di, vec3 si, vec3 yi, float wi) {
         r += implicit_spring_force(n, len, dij, rest, k, kd_h);
         block += implicit_spring_block(n, k, kd_h, implicit_tension(len, rest, k, true));
     }
+    return r;
+}
+#endif
+
+#ifdef DRAPE_PASS_IMPLICIT
+// The block-Jacobi step of particle i (free) on Phi(d) = sum_i |d_i - y_i|^2 / (2 w_i h^2) +
+// sum_springs k/2 (|x_i - x_j| - L)^2 + dashpots (kernels::implicit_residual): the force residual
+// r_i = -grad_i Phi and a 3x3 block D_i like Phi's Hessian block H_ii, but with each spring's
+// transverse stiffness k (1 - L/l) taken by its magnitude (implicit_tension, magnitude true): D_i is
+// positive definite, and since a spring's term in H is at most twice its share of the two blocks,
+// H <= 2 D: the damped iteration converges for the linearised problem. (Dropping a compressed
+// spring's negative transverse term instead, as the CPU's blocks do, let a stiff cloth hanging from
+// two corners oscillate at 150 % strain.) Returns D_i^-1 r_i. Neighbours' iterates from u_x, their
+// substep start from u_aux.
+vec3 jacobi_step(int row, int count, vec3 di, vec3 si, vec3 yi, float wi) {
+    mat3 block;
+    vec3 r = implicit_residual(row, count, di, si, yi, wi, block);
     return inverse(block) * r;
 }
+#endif
+
+#if defined(DRAPE_PASS_COARSE) || defined(DRAPE_PROLONG)
+uvec4 fetch_table(int t) { return texelFetch(u_coarse_table, texel(t), 0); }
+vec3 fetch_vec(int t) { return texelFetch(u_coarse_vec, texel(t), 0).xyz; }
+#endif
+
+#ifdef DRAPE_PASS_COARSE
+#ifdef DRAPE_COARSE_RESTRICT
+// Particle i's force residual at the iterate (0 for a pinned or held particle, or no member).
+vec3 member_residual(uint i) {
+    if (i == DRAPE_NO_NODE) return vec3(0.0);
+    int p = int(i);
+    vec4 rec = fetch_x(p);
+    if (rec.w == 0.0) return vec3(0.0);
+    vec3 yi = texelFetch(u_x, texel(p * DRAPE_RECORD + 2), 0).xyz;  // the record's target
+    mat3 block;
+    return implicit_residual(p * DRAPE_SLOTS, int(fetch_info(p).x), rec.xyz, fetch_aux(p).xyz, yi, rec.w, block);
+}
+#define DRAPE_MEMBER_TERM member_residual
+#endif
+#ifdef DRAPE_COARSE_DOWN
+// What one Jacobi smoothing from 0 leaves of level l's residual at node c: R_c - sum_j A_cj w R_j / A_jj
+// (the table's entries hold A_cj / A_jj). u_coarse: x members, y level l's info, z its residuals.
+vec3 smoothed_residual(uint c) {
+    if (c == DRAPE_NO_NODE) return vec3(0.0);
+    int node = int(c);
+    int residuals = int(u_coarse.z);
+    vec3 res = (1.0 - DRAPE_COARSE_WEIGHT) * fetch_vec(residuals + node);
+    uvec4 info = fetch_table(int(u_coarse.y) + node);
+    for (int e = 0; e < int(info.y); ++e) {
+        uvec4 entry = fetch_table(int(info.x) + e);
+        res -= (DRAPE_COARSE_WEIGHT * uintBitsToFloat(entry.y)) * fetch_vec(residuals + int(entry.x));
+    }
+    return res;
+}
+#define DRAPE_MEMBER_TERM smoothed_residual
+#endif
+#ifdef DRAPE_MEMBER_TERM
+// Sum over node c's members (u_coarse.x: the members' table texels).
+vec3 sum_members(int c) {
+    vec3 sum = vec3(0.0);
+    for (int q = 0; q < DRAPE_MAX_MEMBERS / 4; ++q) {
+        uvec4 m = fetch_table(int(u_coarse.x) + (DRAPE_MAX_MEMBERS / 4) * c + q);
+        sum += DRAPE_MEMBER_TERM(m.x) + DRAPE_MEMBER_TERM(m.y) + DRAPE_MEMBER_TERM(m.z) + DRAPE_MEMBER_TERM(m.w);
+    }
+    return sum;
+}
+#endif
 #endif
 
 #if DRAPE_SHAPES > 0
@@ -372,6 +446,24 @@ void main() {
 #elif defined(DRAPE_PASS_STILL)
     gl_PointSize = 1.0;
     gl_Position = dot(a_aux.xyz, a_aux.xyz) > u_still_limit2 ? vec4(0.0, 0.0, 0.0, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
+    return;
+#elif defined(DRAPE_PASS_COARSE)
+    int c = gl_VertexID;
+#if defined(DRAPE_COARSE_RESTRICT) || defined(DRAPE_COARSE_DOWN)
+    v_d = vec4(sum_members(c), 0.0);  // level 1 / level l+1 residual
+#elif defined(DRAPE_COARSE_SOLVE)
+    // e_c = sum_j (A^-1)_cj R_j; u_coarse: x the inverse's texels, y the residuals, z the node count.
+    int count = int(u_coarse.z);
+    vec3 e = vec3(0.0);
+    for (int j = 0; j < count; ++j)
+        e += uintBitsToFloat(fetch_table(int(u_coarse.x) + c * count + j).x) * fetch_vec(int(u_coarse.y) + j);
+    v_d = vec4(e, 0.0);
+#else  // DRAPE_COARSE_UP: u_coarse: x level l's info, y its residuals, z the parents' corrections
+    uvec4 info = fetch_table(int(u_coarse.x) + c);
+    vec3 e = (DRAPE_COARSE_WEIGHT / uintBitsToFloat(info.w)) * fetch_vec(int(u_coarse.y) + c);
+    if (info.z != DRAPE_NO_NODE) e += fetch_vec(int(u_coarse.z) + int(info.z));
+    v_d = vec4(e, 0.0);
+#endif
     return;
 #else
     int i = gl_VertexID;
@@ -522,6 +614,16 @@ void main() {
     // and gamma: the springs' exact equilibrium at rest. Kinematic particles keep their path.
     vec3 di = a_x.xyz;  // own iterate
     vec3 dn = di;
+#ifdef DRAPE_PROLONG
+    // The aggregate's correction, added to the iterate and the previous one alike: the Chebyshev
+    // recurrence goes on from the corrected pair. u_coarse: x particles' info, y level 1's corrections.
+    uint parent = fetch_table(int(u_coarse.x) + i).z;
+    vec3 e = wi != 0.0 && parent != DRAPE_NO_NODE ? fetch_vec(int(u_coarse.y) + int(parent)) : vec3(0.0);
+    v_d = vec4(di + e, wi);
+    v_prev = vec4(a_prev.xyz + e, a_prev.w);
+    v_target = a_target;
+    return;
+#endif
     if (wi != 0.0) {
         vec3 jacobi = di + u_chebyshev.y * jacobi_step(row, count, di, a_aux.xyz, a_target.xyz, wi);
         dn = a_prev.xyz + u_chebyshev.x * (jacobi - a_prev.xyz);

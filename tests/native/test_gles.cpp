@@ -630,21 +630,22 @@ TEST_F(Gles, ContextGoneAndNotReplacedFailsClearly) {
 class GlesImplicit : public Gles {};
 class GlesImplicitRest : public WithHeadlessGles<::testing::TestWithParam<RestScene>> {};
 
-/// Steps 10 s at 60 Hz without reading back. Not settle(): the slowest mode of a local solver can
+/// Steps `seconds` at 60 Hz without reading back. Not settle(): the slowest mode of a local solver can
 /// creep by less than settle's 1e-7 m per step while still 1 % away.
-void run_ten_seconds(drape_cloth* c) {
-    for (int f = 0; f < 600; ++f) ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
+void run_seconds(drape_cloth* c, int seconds) {
+    for (int f = 0; f < 60 * seconds; ++f) ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
 }
 
 // At the default settings (AUTO resolves to IMPLICIT on GLES too): within 0.5 % of the Newton
-// equilibrium's displacement, at every vertex and at the lowest point, after 10 s, from 100 N/m to
-// 1e5 N/m and with a vertex 1e4 times heavier than the others.
+// equilibrium's displacement, at every vertex and at the lowest point, after 5 s, from 100 N/m to
+// 1e5 N/m and with a vertex 1e4 times heavier than the others (measured with the coarse levels: at
+// most 1.4e-4 after 5 s; the sheets still swing physically after 3 s, up to 4.4e-3).
 TEST_P(GlesImplicitRest, DefaultRestsAtTheNewtonEquilibrium) {
     const RestScene s = GetParam();
     RestSetup setup = make_scene(s, DRAPE_MODEL_AUTO, DRAPE_BACKEND_GLES);
     ASSERT_NE(setup.cloth, nullptr);
     const std::vector<double> ref = newton_reference(setup);
-    run_ten_seconds(setup.cloth);
+    run_seconds(setup.cloth, 5);
     const RestError e = rest_error(positions(setup.cloth), ref, setup.rest);
     std::printf("[ measured ] GLES default %s %u^2, k x %g, heavy x %g: vertex error %.2e, lowest point %.2e of the "
                 "displacement\n",
@@ -659,18 +660,39 @@ INSTANTIATE_TEST_SUITE_P(R13, GlesImplicitRest,
                                            RestScene{Scene::Sheet, 17, 0.05f}, RestScene{Scene::Curtain, 17, 0.05f},
                                            RestScene{Scene::Sheet, 17, 50}, RestScene{Scene::Curtain, 17, 50, 1e4f}));
 
+// The coarse levels (gles_coarse.h, one V-cycle per substep) carry the stretch across the cloth: the
+// 65^2 curtain (1 kg, the bench's rest scene) at the default settings is within 0.5 % of the Newton
+// equilibrium at every vertex after 2 s. Measured (llvmpipe): 8.7e-5 after 2 s, 6.1e-3 after 1 s;
+// without the coarse levels 27 % after 2 s and 6.9 % after 4 s (swinging about it, 12 % at 10 s
+// at 257^2). At 129^2 (a one-off run, not here: ~1 s a step on llvmpipe): 3.3e-3 after 2 s, 2.1e-4
+// after 3 s.
+TEST_F(GlesImplicit, CoarseLevelsSettleA65CurtainInTwoSeconds) {
+    RestScene s{Scene::Curtain, 65, 1};
+    s.mass = 1.0f;
+    RestSetup setup = make_scene(s, DRAPE_MODEL_AUTO, DRAPE_BACKEND_GLES);
+    ASSERT_NE(setup.cloth, nullptr);
+    const std::vector<double> ref = newton_reference(setup);
+    for (int f = 0; f < 120; ++f) ASSERT_DRAPE_OK(drape_cloth_step(setup.cloth, 1.0f / 60));
+    const RestError e = rest_error(positions(setup.cloth), ref, setup.rest);
+    std::printf("[ measured ] GLES default curtain 65^2, 1 kg, after 2 s: vertex error %.2e, lowest point %.2e of the "
+                "displacement\n",
+                e.vertex, e.lowest);
+    EXPECT_LT(e.vertex, 5e-3);
+    EXPECT_LT(e.lowest, 5e-3);
+}
+
 // The stiff 33^2 curtain (1e5 N/m) stretches so little (a displacement of a few float ulps of its
 // positions per row) that float rounding sets its rest state's vertex error: the lowest point is
 // within 0.5 %, the worst vertex wanders between 4.2e-3 and 6.0e-3 of the displacement, frozen
 // from 2 s on at budgets 16 x 3, 2 x 8, 1 x 8, 1 x 12 and 1 x 16 and Chebyshev floors 0.25 and 0.1
 // alike (the CPU's IMPLICIT: 4.9e-3 at 2 x 4 and 1 x 4). Held to what float positions resolve per
-// vertex (RestError::floor, 0.88 % here).
+// vertex (RestError::floor, 0.88 % here), after 3 s (with the coarse levels 7.2e-3 after 3 s and 10 s).
 TEST_F(GlesImplicit, StiffCurtainRestsAtTheFloatFloor) {
     const RestScene s{Scene::Curtain, 33, 50};
     RestSetup setup = make_scene(s, DRAPE_MODEL_IMPLICIT, DRAPE_BACKEND_GLES);
     ASSERT_NE(setup.cloth, nullptr);
     const std::vector<double> ref = newton_reference(setup);
-    run_ten_seconds(setup.cloth);
+    run_seconds(setup.cloth, 3);
     const RestError e = rest_error(positions(setup.cloth), ref, setup.rest);
     std::printf("[ measured ] GLES IMPLICIT curtain 33^2, 1e5 N/m: vertex error %.2e (float floor %.2e), lowest point "
                 "%.2e\n",
@@ -681,11 +703,11 @@ TEST_F(GlesImplicit, StiffCurtainRestsAtTheFloatFloor) {
 
 // CPU and GLES IMPLICIT side by side on the sheet pinned along two edges, dropped flat, both at
 // GLES's automatic substep. In motion the two solvers stop short of implicit Euler's answer in
-// different ways (GLES: 3 block-Jacobi passes per substep, CPU: up to 4 conjugate-gradient
-// iterations on a global preconditioner): GLES answers slowly varying forces more slowly
-// (measured: 6.9 mm apart at most in the first second, of a 40.8 mm sag; 11.5 mm with the CPU at
-// its own 2 substeps), so they are held to a quarter of the sag in motion, not to rounding; at rest
-// both are the springs' equilibrium within R13's 0.5 % of the sag each (measured 2.5e-7 m apart),
+// different ways (GLES: 3 block-Jacobi passes and a coarse V-cycle per substep, CPU: up to 4
+// conjugate-gradient iterations on a global preconditioner): measured 5.3 mm apart at most in the
+// first second, of a 40.8 mm sag (6.9 mm without the coarse levels; 11.5 mm with the CPU at its own
+// 2 substeps), so they are held to a quarter of the sag in motion, not to rounding; at rest (3 s)
+// both are the springs' equilibrium within R13's 0.5 % of the sag each (measured 1.2e-5 m apart),
 // so 1 % apart.
 TEST_F(GlesImplicit, MatchesCpuImplicitInMotionAndAtRest) {
     const RestScene scene{Scene::Sheet, 17, 1};
@@ -703,8 +725,8 @@ TEST_F(GlesImplicit, MatchesCpuImplicitInMotionAndAtRest) {
         ASSERT_DRAPE_OK(drape_cloth_step(gpu.cloth, 1.0f / 60));
         worst = std::max(worst, max_abs_diff(positions(cpu.cloth), positions(gpu.cloth)));
     }
-    run_ten_seconds(cpu.cloth);
-    run_ten_seconds(gpu.cloth);
+    run_seconds(cpu.cloth, 3);
+    run_seconds(gpu.cloth, 3);
     const float at_rest = max_abs_diff(positions(cpu.cloth), positions(gpu.cloth));
     std::printf("[ measured ] IMPLICIT GLES vs CPU, 17^2 sheet (sag %.4f m): %.2e m apart at most in the first 1 s, "
                 "%.2e m at rest\n",
@@ -732,8 +754,9 @@ drape_cloth* dropped_sheet(drape_world* w, drape_backend backend, drape_model mo
 // The GLES default in motion against implicit Euler's answer (CPU IMPLICIT at 32 x 64, which XPBD
 // at 64 x 4 matches to 7 mm rms): over the first second of a drop from two corners, the rms vertex
 // distance from it, averaged over the frames, and the largest strain. Measured (llvmpipe): default
-// (IMPLICIT 16 x 3) 0.12 m and 0.19, XPBD 16 x 1 (the GLES default before) 0.15 m and 0.92; the old
-// GLES IMPLICIT budget 2 x 8: 0.29 m and 0.76.
+// (IMPLICIT 16 x 3 with a coarse V-cycle per substep) 0.029 m and 0.066, XPBD 16 x 1 (the GLES
+// default before) 0.14 m and 0.92; without the coarse levels 0.12 m and 0.19; the old GLES IMPLICIT
+// budget 2 x 8: 0.29 m and 0.76. Held to half of XPBD's distance (the coarse levels' gain).
 TEST_F(GlesImplicit, DefaultFollowsADropAtLeastAsCloselyAsXpbd) {
     WorldPtr w = make_world(1);
     drape_cloth* ref = dropped_sheet(w.get(), DRAPE_BACKEND_CPU, DRAPE_MODEL_IMPLICIT, 32, 64);
@@ -758,7 +781,7 @@ TEST_F(GlesImplicit, DefaultFollowsADropAtLeastAsCloselyAsXpbd) {
     std::printf("[ measured ] 33^2 drop, first 1 s, rms distance from CPU IMPLICIT 32 x 64 / max strain: GLES default "
                 "%.4f m / %.3f, GLES XPBD 16 x 1 %.4f m / %.3f\n",
                 err_def, strain_def, err_xpbd, strain_xpbd);
-    EXPECT_LE(err_def, err_xpbd);
+    EXPECT_LE(err_def, 0.5 * err_xpbd);
     EXPECT_LE(strain_def, 0.5 * strain_xpbd);
 }
 
@@ -767,8 +790,9 @@ TEST_F(GlesImplicit, DefaultFollowsADropAtLeastAsCloselyAsXpbd) {
 // With the Chebyshev polynomial allowed down to -1/4, stiff modes decayed by only 0.81 per substep
 // with alternating sign and the cloth stayed in a stretched oscillation: max strain 0.86 at the
 // end, mean rms strain 0.12 (the same scene at 33^2 and 1e3 N/m: 1.15 and 0.20). Down to -0.1:
-// 0.027 and 0.0067 at 2 x 8; at the default 16 x 3: 0.17 and 0.0097, 0.016 in the last 0.5 s
-// (XPBD 16 x 1: 0.028 and 0.017; CPU IMPLICIT at 4 x 16: 0.017 and 0.004 at 33^2).
+// 0.027 and 0.0067 at 2 x 8; at the default 16 x 3 before the coarse levels: 0.17 and 0.0097,
+// 0.016 in the last 0.5 s; with them 0.023 and 0.0044, 0.0043 (XPBD 16 x 1: 0.028 and 0.017; CPU
+// IMPLICIT at 4 x 16: 0.017 and 0.004 at 33^2).
 TEST_F(GlesImplicit, SwungAndJerkedCurtainDoesNotStayStretched) {
     const uint32_t n = 17;
     WorldPtr w = make_world(1);
@@ -801,11 +825,11 @@ TEST_F(GlesImplicit, SwungAndJerkedCurtainDoesNotStayStretched) {
 // Stress: stiff springs (1e5 N/m in every group) on a cloth dropped from flat, hanging from two
 // corners, at 60 Hz and at big steps (1/10 s), at the default budget and a starved one (one
 // substep, one iteration), for 60 steps. Never a non-finite value, inside a box 10 times the
-// cloth, no runaway strain (kRunawayStrain, accuracy.md's "exploded"). The local solve stretches a
-// stiff cloth in motion far more than the CPU's global one: at 60 Hz and the default budget (16 x 3)
-// max strain 3.2 % on llvmpipe (2 x 8: 10 %; CPU IMPLICIT 0.5 %), held to 20 %; at 1/10 s it can
-// stay stretched for a while (16 x 3: max 16 %, 10 % at the end on llvmpipe; 2 x 8: 14 % on
-// llvmpipe, 60 % on softpipe; CPU 0.9 %; starved 300 %, CPU 13 %), held only to no runaway.
+// cloth, no runaway strain (kRunawayStrain, accuracy.md's "exploded"). Block Jacobi alone stretched a
+// stiff cloth in motion far more than the CPU's global solve (default 16 x 3: max strain 3.2 % at
+// 60 Hz, 16 % at 1/10 s; starved 300 %; CPU IMPLICIT 0.5 %, 0.9 %, 13 %); the coarse levels carry
+// the pins' pull across the cloth: measured on llvmpipe 0.1 % at 60 Hz, 0.5 % at 1/10 s, starved
+// 36.5 %. The default is held to 5 % at both steps, the starved budget only to no runaway.
 TEST_F(GlesImplicit, StiffClothBigStepsStarvedBudgetStayFinite) {
     const uint32_t n = 17;
     for (float dt : {1.0f / 60, 0.1f})
@@ -833,7 +857,7 @@ TEST_F(GlesImplicit, StiffClothBigStepsStarvedBudgetStayFinite) {
             }
             std::printf("[ measured ] GLES IMPLICIT 1e5 N/m, dt %.3f s, budget %s: max strain %.3f, %.4f at the end, farthest %.2f m\n",
                         dt, budget ? "1 x 1" : "default", worst_strain, stats_of(c).max_strain, farthest);
-            EXPECT_LT(worst_strain, budget == 0 && dt < 0.02f ? 0.2f : 10.0f);
+            EXPECT_LT(worst_strain, budget == 0 ? 0.05f : 10.0f);
             EXPECT_LT(farthest, 10.0f);
         }
 }

@@ -16,6 +16,10 @@
 //   tethers: per particle (anchor index, length bits), uploaded when they change; the tether pass
 //     (one more transform-feedback pass per substep, x and d into the spare pair) runs only when
 //     the cloth has tethers (max_stretch > 0 and kinematic particles), as on the CPU.
+//   IMPLICIT's coarse levels (gles_coarse.h): one RGBA32UI table (aggregates, coarse matrices, the
+//     coarsest level's inverse), cooked on the CPU when h, the springs or the masses change, and a
+//     buffer of per-level residuals and corrections with its RGBA32F texture (refreshed after each
+//     coarse pass).
 // Positions on the GPU are local, relative to Cloth::origin as on the CPU (float-safe far from the
 // caller's origin); the output pass adds the origin, and re-centring shifts them in a GPU pass.
 // Nothing is read back on the step path; pull() (explicit readback, get_stats, setters that need
@@ -27,6 +31,7 @@
 #pragma once
 
 #include "backend/gles/gl_loader.h"  // GL ES 3.0 + EGL, loaded at run time
+#include "backend/gles/gles_coarse.h"
 #include "backend/gles/gles_self_collide.h"
 #include "backend/gles/sim_uniforms.h"  // generated from tools/abi/abi.py
 
@@ -78,6 +83,9 @@ struct GlObjects {
     std::vector<GLuint> programs;
     std::vector<GLuint> vaos;  ///< per pass configuration (GlesCloth::vertex_array)
     SelfCollideGl self;        ///< self-collision's (gles_self_collide.h)
+    /// IMPLICIT's coarse levels (gles_coarse.h): table texture, vector buffer and its texture, and
+    /// the attribute-less vertex array their passes draw with.
+    GLuint coarse_table = 0, coarse_vec = 0, coarse_vec_tex = 0, coarse_vao = 0;
     void* context = nullptr;  ///< EGLContext they were made in
     bool empty() const;
 };
@@ -250,6 +258,15 @@ private:
     GLuint own_framebuffer();
     /// kernels::tether: reads state buffers x and d, writes them to out_x and out_d.
     void run_tether(Program& p, int x, int d, int out_x, int out_d);
+    /// IMPLICIT's coarse levels for substep h: cooked and uploaded when h, the springs or the masses
+    /// changed since (before begin_passes: it uploads through the setup unit).
+    Result prepare_coarse(float h);
+    /// One V-cycle of the coarse correction on the iterate records in buffer `in` (substep start in
+    /// `cur`), the corrected records into `out`. p: the restrict, down, solve, up and prolong programs.
+    void run_coarse(Program* const p[5], int in, int cur, int out);
+    /// One pass over `count` nodes of a coarse level into the vector buffer at texel `write`
+    /// (refreshed into its texture after); u_coarse = offsets.
+    void coarse_pass(Program& p, int x, int aux, const glm::vec4& offsets, uint32_t write, uint32_t count);
     bool has_tethers() const { return params_.max_stretch > 0 && !kinematic_.empty(); }
     /// CpuCloth::collide: drag share (first substep, `drag`: drag_views_, drag_touches_) and colliders (shape_data_,
     /// `shapes` of them) on x and d, written to out_x and out_d.
@@ -269,6 +286,9 @@ private:
     Result deferred_error_;
 
     GlObjects gl_;
+    CoarseHierarchy coarse_;
+    /// What coarse_ was cooked for (h 0: nothing uploaded in this context): substep, stiffness, damping.
+    float coarse_key_[5] = {};
     std::map<std::string, Program> programs_;
     bool gl_ready_ = false;
     int g_[4] = {0, 1, 2, 3};  // GPU buffer roles: cur (x), disp (d), spare, spare2
