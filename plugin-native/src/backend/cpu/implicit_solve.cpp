@@ -135,12 +135,20 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     row_col_.resize(row_start_[m]);
     row_value_.resize(row_start_[m]);
     inv_diag_.resize(m);
+    col_start_.assign(m + 1, 0);
+    col_row_.resize(row_start_[m]);
+    col_value_.resize(row_start_[m]);
     for (int j = 0; j < m; ++j) {
         inv_diag_[j] = float(1.0 / l.valuePtr()[l.outerIndexPtr()[j]]);
+        col_start_[j + 1] = col_start_[j] + uint32_t(l.outerIndexPtr()[j + 1] - l.outerIndexPtr()[j] - 1);
+        uint32_t c = col_start_[j + 1];  // filled from the end: the column's rows last first
         for (int k = l.outerIndexPtr()[j] + 1; k < l.outerIndexPtr()[j + 1]; ++k) {
+            assert(k == l.outerIndexPtr()[j] + 1 || l.innerIndexPtr()[k] > l.innerIndexPtr()[k - 1]);
             const uint32_t e = fill[l.innerIndexPtr()[k]]++;
             row_col_[e] = uint32_t(j);
             row_value_[e] = float(l.valuePtr()[k]);
+            col_row_[--c] = uint32_t(l.innerIndexPtr()[k]);
+            col_value_[c] = row_value_[e];
         }
     }
     h_ = h;
@@ -329,7 +337,7 @@ ImplicitSolve::Dots ImplicitSolve::precondition(const Particle* r, const Particl
         each_part([&](int p) { forward_part(p, r, value, inv_diag); });
         separator(r, r_prev, z, value, inv_diag);
         each_part([&](int p) {
-            part_dots_[p] = back_substitute(begin_[p], begin_[p + 1], r, r_prev, z, value, inv_diag);
+            part_dots_[p] = back_substitute(begin_[p], begin_[p + 1], r, r_prev, z, inv_diag);
         });
     };
     if (with_coarse_) {
@@ -374,21 +382,21 @@ void ImplicitSolve::separator(const Particle* r, const Particle* r_prev, Particl
             v -= value[k] * y_[row_col_[k]];
         y_[row] = v * inv_diag[row];
     }
-    part_dots_[kParts] = back_substitute(sep, m, r, r_prev, z, value, inv_diag);
+    part_dots_[kParts] = back_substitute(sep, m, r, r_prev, z, inv_diag);
 }
 
 ImplicitSolve::Dots ImplicitSolve::back_substitute(uint32_t first, uint32_t last, const Particle* r,
-                                                   const Particle* r_prev, Particle* z, const float* value,
-                                                   const float* inv_diag) {
-    // L^T y' = y over rows [first, last), last row first, by rows of L: a row's y is final once every
-    // later row has subtracted its share, and the row then subtracts its own from the earlier rows it
-    // reaches (its own part's; the separator's reach both parts, so it runs before them). z takes y'
-    // at each row's particle, with its dot products on the way.
+                                                   const Particle* r_prev, Particle* z, const float* inv_diag) {
+    // L^T y' = y over rows [first, last), last row first, by columns of L: a row's y' is its y less
+    // the shares of the later rows its column reaches (its own part's and the separator's, so the
+    // separator runs before the parts). z takes y' at each row's particle, with its dot products on
+    // the way.
     Dots dots;
     for (uint32_t row = last; row-- > first;) {
-        const glm::vec3 v = y_[row] * inv_diag[row];
+        glm::vec3 v = y_[row];
+        for (uint32_t k = col_start_[row]; k < col_start_[row + 1]; ++k) v -= col_value_[k] * y_[col_row_[k]];
+        v *= inv_diag[row];
         y_[row] = v;
-        for (uint32_t k = row_start_[row]; k < row_start_[row + 1]; ++k) y_[row_col_[k]] -= value[k] * v;
         const uint32_t i = particle_[row];
         glm::vec3 zi = with_blocks_ ? v + block_inv_[i] * glm::vec3(r[i]) : v;  // A^-1 r (+ D^-1 r)
         if (with_coarse_) zi += coarse_.at(i);

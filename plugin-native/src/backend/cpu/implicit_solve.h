@@ -101,17 +101,23 @@ class ImplicitSolve {
     void forward_part(int p, const Particle* r, const float* value, const float* inv_diag);
     void separator(const Particle* r, const Particle* r_prev, Particle* z, const float* value, const float* inv_diag);
     Dots back_substitute(uint32_t first, uint32_t last, const Particle* r, const Particle* r_prev, Particle* z,
-                         const float* value, const float* inv_diag);
+                         const float* inv_diag);
 
     float h_ = 0;
     std::vector<float> key_;           ///< stiffness, damping and inverse masses it was built from
     uint32_t begin_[kParts + 2] = {};  ///< factor rows of part p: [begin_[p], begin_[p + 1]); separator last
     std::vector<uint32_t> particle_;   ///< particle of each factor row
     std::vector<float> inv_diag_;      ///< 1 / L_jj
-    // Strictly lower part of L by rows: the forward substitution gathers along a row, the back
-    // substitution scatters along it (a part's rows reach only its own columns, so parts run at once).
+    // Strictly lower part of L by rows: the forward substitution gathers along a row (a part's rows
+    // reach only its own columns, so parts run at once).
     std::vector<uint32_t> row_start_, row_col_;
     std::vector<float> row_value_;
+    // And by columns, each column's rows last first: the back substitution gathers down a column
+    // (its own part's rows and the separator's, final before the parts start), in the order in which
+    // scattering along the rows subtracted them, so the same bits at half the instructions (a
+    // scatter loads and stores all three axes of y per entry; a gather keeps its sum in registers).
+    std::vector<uint32_t> col_start_, col_row_;
+    std::vector<float> col_value_;
     /// Per separator row, where its entries in each part's columns end (they are sorted by column).
     std::vector<uint32_t> sep_split_;
     std::vector<glm::vec3> y_;        ///< scratch, one per factor row
