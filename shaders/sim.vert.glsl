@@ -26,8 +26,9 @@
 //                            accelerated by Chebyshev (Wang 2015); iterate records (v_d, v_prev,
 //                            v_target). With DRAPE_COMMIT: two outputs, v_x = start +
 //                            displacement and v_d
-//   DRAPE_PROLONG            with DRAPE_PASS_IMPLICIT: no Jacobi step, the coarse correction of each
-//                            particle's aggregate (level 1) added to its iterate and previous iterate
+//   DRAPE_PROLONG            with DRAPE_PASS_IMPLICIT: the iteration first adds the coarse correction
+//                            of each particle's aggregate (level 1) to its iterate and previous
+//                            iterate (own and neighbours' alike)
 //   DRAPE_PASS_COARSE        one pass of the coarse correction (gles_coarse.h; one vertex per node of
 //                            a level, v_d = (vec3, 0)): DRAPE_COARSE_RESTRICT sums the force residual
 //                            of each level-1 node's particles at the iterate; DRAPE_COARSE_DOWN smooths
@@ -307,7 +308,30 @@ vec4 solve_slots4(Own o, int q, vec4 lambda, inout vec3 dx) {
 #endif
 #endif
 
+#if defined(DRAPE_PASS_COARSE) || defined(DRAPE_PROLONG)
+uvec4 fetch_table(int t) { return texelFetch(u_coarse_table, texel(t), 0); }
+vec3 fetch_vec(int t) { return texelFetch(u_coarse_vec, texel(t), 0).xyz; }
+#endif
+#ifdef DRAPE_PROLONG
+// The coarse correction of particle j's aggregate (u_coarse: x particles' info, y level 1's
+// corrections); 0 where it does not move (w 0: pinned or held) or has no aggregate.
+vec3 correction(int j, float w) {
+    uint parent = fetch_table(int(u_coarse.x) + j).z;
+    return w != 0.0 && parent != DRAPE_NO_NODE ? fetch_vec(int(u_coarse.y) + int(parent)) : vec3(0.0);
+}
+#endif
+
 #if defined(DRAPE_PASS_IMPLICIT) || defined(DRAPE_COARSE_RESTRICT)
+// Neighbour j's iterate, with its coarse correction in the iteration that adds it.
+vec3 neighbour_iterate(int j) {
+    vec4 r = fetch_x(j);
+#ifdef DRAPE_PROLONG
+    return r.xyz + correction(j, r.w);
+#else
+    return r.xyz;
+#endif
+}
+
 // The force residual r_i = -grad_i Phi (see jacobi_step) at the iterate and the block D_i.
 vec3 implicit_residual(int row, int count, vec3 di, vec3 si, vec3 yi, float wi, out mat3 block) {
     float kd_h = u_damping / u_h;
@@ -318,7 +342,7 @@ vec3 implicit_residual(int row, int count, vec3 di, vec3 si, vec3 yi, float wi, 
         uvec4 nb = fetch_nbr(row + s);
         if (!active_group(nb.z)) continue;
         int j = int(nb.x);
-        vec3 dij = di - fetch_x(j).xyz;
+        vec3 dij = di - neighbour_iterate(j);
         float len;
         vec3 n = direction((si - fetch_aux(j).xyz) + dij, len);
         float k = u_stiffness[nb.z];
@@ -345,11 +369,6 @@ vec3 jacobi_step(int row, int count, vec3 di, vec3 si, vec3 yi, float wi) {
     vec3 r = implicit_residual(row, count, di, si, yi, wi, block);
     return inverse(block) * r;
 }
-#endif
-
-#if defined(DRAPE_PASS_COARSE) || defined(DRAPE_PROLONG)
-uvec4 fetch_table(int t) { return texelFetch(u_coarse_table, texel(t), 0); }
-vec3 fetch_vec(int t) { return texelFetch(u_coarse_vec, texel(t), 0).xyz; }
 #endif
 
 #ifdef DRAPE_PASS_COARSE
@@ -613,26 +632,24 @@ void main() {
     // Chebyshev's extrapolation from the previous iterate. Its fixed point is r = 0 whatever omega
     // and gamma: the springs' exact equilibrium at rest. Kinematic particles keep their path.
     vec3 di = a_x.xyz;  // own iterate
-    vec3 dn = di;
+    vec3 prev = a_prev.xyz;
 #ifdef DRAPE_PROLONG
     // The aggregate's correction, added to the iterate and the previous one alike: the Chebyshev
-    // recurrence goes on from the corrected pair. u_coarse: x particles' info, y level 1's corrections.
-    uint parent = fetch_table(int(u_coarse.x) + i).z;
-    vec3 e = wi != 0.0 && parent != DRAPE_NO_NODE ? fetch_vec(int(u_coarse.y) + int(parent)) : vec3(0.0);
-    v_d = vec4(di + e, wi);
-    v_prev = vec4(a_prev.xyz + e, a_prev.w);
-    v_target = a_target;
-    return;
+    // recurrence goes on from the corrected pair.
+    vec3 e = correction(i, wi);
+    di += e;
+    prev += e;
 #endif
+    vec3 dn = di;
     if (wi != 0.0) {
         vec3 jacobi = di + u_chebyshev.y * jacobi_step(row, count, di, a_aux.xyz, a_target.xyz, wi);
-        dn = a_prev.xyz + u_chebyshev.x * (jacobi - a_prev.xyz);
+        dn = prev + u_chebyshev.x * (jacobi - prev);
     }
     v_d = vec4(dn, wi);
 #ifdef DRAPE_COMMIT
     v_x = vec4(a_aux.xyz + dn, wi);
 #else
-    v_prev = a_x;
+    v_prev = vec4(di, a_x.w);
     v_target = a_target;
 #endif
 

@@ -83,8 +83,8 @@ constexpr uint64_t kUniformsPerPass = 3;
 
 // IMPLICIT's coarse correction per substep (sim.vert.glsl DRAPE_PASS_COARSE): this cloth's 1022 free
 // particles make two coarse levels (about 256 and 64 nodes, gles_coarse.h), so restrict, one down
-// pass, the dense solve, one up pass and the prolongation.
-constexpr uint64_t kImplicitCoarsePasses = 5;
+// pass, the dense solve and one up pass (the next iteration adds the correction).
+constexpr uint64_t kImplicitCoarsePasses = 4;
 
 // Self-collision: a draw per hash layer (gles_self_collide.h kSelfLayers) and the collide pass.
 constexpr uint64_t kSelfHashLayers = 8;

@@ -27,7 +27,8 @@ namespace {
 constexpr uint32_t kMaxLambdaVec4 = DRAPE_MAX_LAMBDA_VEC4;
 
 enum Pass { kMassSpring = 0, kPredict = 1, kConstraint = 2, kCommit = 3, kTether = 4, kInteract = 5, kMove = 6, kStill = 7,
-            kCoarseRestrict = 8, kCoarseDown = 9, kCoarseSolve = 10, kCoarseUp = 11, kProlong = 12 };  // kCommit: last iteration
+            kCoarseRestrict = 8, kCoarseDown = 9, kCoarseSolve = 10, kCoarseUp = 11, kProlong = 12, kCommitProlong = 13 };
+// kCommit: last iteration; kProlong, kCommitProlong: IMPLICIT's iteration that adds the coarse correction.
 bool is_coarse(int pass) { return pass >= kCoarseRestrict && pass <= kCoarseUp; }
 // Uniforms outside the DrapeSim block (sim_uniforms.h): per substep, per collider set, per rigid
 // move. u_x / u_aux: the texture units of the pass's input buffers (see kNbrUnit).
@@ -66,10 +67,11 @@ constexpr uint32_t kImplicitRecordVec4 = 3;
 // Block Jacobi alone moves the cloth's smooth modes (stretch carried from the pins across the cloth)
 // by D^-1 A ~ (m/h^2) / (sum of k) per pass, ~1e-3 at 257^2: the curtain swung about its rest state
 // for seconds (65^2: 27 % off after 2 s; 257^2: 12 % after 10 s). So each substep runs one V-cycle of
-// the coarse levels after its first iteration (run_coarse, gles_coarse.h): a multiplicative coarse
-// correction of the iterate (and of the previous iterate, so the Chebyshev recurrence goes on from
-// the corrected pair). It changes no fixed point either. Measured: 65^2 curtain within 1e-4 after
-// 2 s; 33^2 drop from two corners 0.029 m rms from the CPU's answer (0.12 without, XPBD 0.14).
+// the coarse levels after its first iteration (run_coarse, gles_coarse.h), and the second iteration
+// (kProlong) adds the correction to the iterate and the previous iterate (so the Chebyshev
+// recurrence goes on from the corrected pair) before its Jacobi step: a multiplicative coarse
+// correction, which changes no fixed point either. Measured: 65^2 curtain within 1e-4 after 2 s;
+// 33^2 drop from two corners 0.022 m rms from the CPU's answer (0.12 without, XPBD 0.14).
 constexpr double kImplicitChebyshevFloor = 0.1;
 struct Chebyshev {
     float rho, gamma;
@@ -862,8 +864,8 @@ const std::string& GlesCloth::variant_defines(int pass) const {
                                         : "#define DRAPE_PASS_PREDICT 1\n";
     if (pass == kConstraint || pass == kCommit)
         d += implicit ? "#define DRAPE_PASS_IMPLICIT 1\n" : "#define DRAPE_PASS_CONSTRAINT 1\n";
-    if (pass == kCommit) d += "#define DRAPE_COMMIT 1\n";
-    if (pass == kProlong) d += "#define DRAPE_PASS_IMPLICIT 1\n#define DRAPE_PROLONG 1\n";
+    if (pass == kCommit || pass == kCommitProlong) d += "#define DRAPE_COMMIT 1\n";
+    if (pass == kProlong || pass == kCommitProlong) d += "#define DRAPE_PASS_IMPLICIT 1\n#define DRAPE_PROLONG 1\n";
     static const char* const kCoarseKinds[] = {"RESTRICT", "DOWN", "SOLVE", "UP"};
     if (is_coarse(pass)) {
         d += "#define DRAPE_PASS_COARSE 1\n#define DRAPE_COARSE_";
@@ -898,7 +900,7 @@ Result GlesCloth::program(int pass, Program** out) {
         // Mass-spring and commit: positions and displacements into two buffers (separate attribs);
         // predict and constraint: one displacement-iterate record [+ lambdas] (interleaved).
         const bool two_outputs =
-            pass == kMassSpring || pass == kCommit || pass == kTether || pass == kInteract || pass == kMove;
+            pass == kMassSpring || pass == kCommit || pass == kCommitProlong || pass == kTether || pass == kInteract || pass == kMove;
         std::vector<std::string> varyings;
         if (two_outputs) varyings = {"v_x", "v_d"};
         else if (is_coarse(pass)) varyings = {"v_d"};  // one vec4 per coarse node
@@ -1015,6 +1017,10 @@ void GlesCloth::run_pass(Program& p, int x, int aux, int out, int out2, bool con
     use_program(p, x, aux);
     if (p.u[uSubstep] >= 0) glUniform4fv(p.u[uSubstep], 1, &sub.x);
     if (p.u[uChebyshev] >= 0) glUniform2f(p.u[uChebyshev], chebyshev.x, chebyshev.y);
+    if (p.u[uCoarse] >= 0) {  // the iteration that adds the coarse correction: where it reads it
+        const glm::vec4 at(float(coarse_.levels[0].info), float(coarse_.levels[1].correction), 0.0f, 0.0f);
+        glUniform4fv(p.u[uCoarse], 1, &at.x);
+    }
     const uint32_t inputs = constraint           ? kIterateRecords
                             : !kinematic_on_gpu() ? 0u
                                                   : kKinematicInputs | (grabs_on_gpu_ ? kGrabTargets : 0u);
@@ -1102,7 +1108,7 @@ void GlesCloth::coarse_pass(Program& p, int x, int aux, const glm::vec4& offsets
                     reinterpret_cast<const void*>(size_t(write) * 16));
 }
 
-void GlesCloth::run_coarse(Program* const p[5], int in, int cur, int out) {
+void GlesCloth::run_coarse(Program* const p[4], int in, int cur) {
     const std::vector<CoarseLevel>& l = coarse_.levels;
     const size_t top = l.size() - 1;
     auto at = [](uint32_t a, uint32_t b = 0, uint32_t c = 0) { return glm::vec4(float(a), float(b), float(c), 0.0f); };
@@ -1114,10 +1120,6 @@ void GlesCloth::run_coarse(Program* const p[5], int in, int cur, int out) {
     coarse_pass(*p[2], -1, -1, at(coarse_.dense, l[top].residual, l[top].count), l[top].correction, l[top].count);
     for (size_t k = top - 1; k >= 1; --k)
         coarse_pass(*p[3], -1, -1, at(l[k].info, l[k].residual, l[k + 1].correction), l[k].correction, l[k].count);
-    use_program(*p[4], in, cur);
-    const glm::vec4 prolong = at(l[0].info, l[1].correction);
-    glUniform4fv(p[4]->u[uCoarse], 1, &prolong.x);
-    draw(vertex_array(in, cur, kIterateRecords), out, -1);
 }
 
 void GlesCloth::run_tether(Program& p, int x, int d, int out_x, int out_d) {
@@ -1282,11 +1284,11 @@ Result GlesCloth::gpu_step(float dt) {
     const uint32_t substeps = substeps_for(dt);
     const float h = dt / float(substeps);
     const uint32_t n = topo_.particle_count;
-    Program* p_coarse[5] = {};
+    Program* p_coarse[6] = {};  // restrict, down, solve, up; the iteration that prolongs, and its commit form
     if (model == DRAPE_MODEL_IMPLICIT) {
         if (Result r = prepare_coarse(h); !r.ok()) return r;
         if (coarse_.active())
-            for (int k = 0; k < 5; ++k)
+            for (int k = 0; k < 6; ++k)
                 if (Result r = program(kCoarseRestrict + k, &p_coarse[k]); !r.ok()) return r;
     }
 
@@ -1341,16 +1343,15 @@ Result GlesCloth::gpu_step(float dt) {
             // The coarse correction comes after the first iteration (before the only one of a 1-iteration budget).
             const uint32_t coarse_at = iterations_for() >= 2 ? 1 : 0;
             for (uint32_t it = 0; it < iterations_for(); ++it) {
-                if (p_coarse[0] && it == coarse_at) {
-                    run_coarse(p_coarse, in, cur, out);
-                    std::swap(in, out);
-                }
+                const bool prolong = p_coarse[0] && it == coarse_at;
+                if (prolong) run_coarse(p_coarse, in, cur);
                 if (it == 1) omega = 2.0f / (2.0f - rho2);
                 else if (it > 1) omega = 4.0f / (4.0f - rho2 * omega);
                 if (it + 1 == iterations_for())
-                    run_pass(*p_commit, in, cur, disp, out, true, sub, {omega, chebyshev.gamma});  // x -> disp, d -> out
+                    run_pass(prolong ? *p_coarse[5] : *p_commit, in, cur, disp, out, true, sub,
+                             {omega, chebyshev.gamma});  // x -> disp, d -> out
                 else
-                    run_pass(*p_constraint, in, cur, out, -1, true, sub, {omega, chebyshev.gamma});
+                    run_pass(prolong ? *p_coarse[4] : *p_constraint, in, cur, out, -1, true, sub, {omega, chebyshev.gamma});
                 std::swap(in, out);
             }
             // Positions went to the old displacement buffer, displacements to `in`.

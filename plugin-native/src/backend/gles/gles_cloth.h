@@ -261,9 +261,10 @@ private:
     /// IMPLICIT's coarse levels for substep h: cooked and uploaded when h, the springs or the masses
     /// changed since (before begin_passes: it uploads through the setup unit).
     Result prepare_coarse(float h);
-    /// One V-cycle of the coarse correction on the iterate records in buffer `in` (substep start in
-    /// `cur`), the corrected records into `out`. p: the restrict, down, solve, up and prolong programs.
-    void run_coarse(Program* const p[5], int in, int cur, int out);
+    /// One V-cycle of the coarse correction from the iterate records in buffer `in` (substep start in
+    /// `cur`) up to level 1's correction, which the next iteration (kProlong) adds. p: the restrict,
+    /// down, solve and up programs.
+    void run_coarse(Program* const p[4], int in, int cur);
     /// One pass over `count` nodes of a coarse level into the vector buffer at texel `write`
     /// (refreshed into its texture after); u_coarse = offsets.
     void coarse_pass(Program& p, int x, int aux, const glm::vec4& offsets, uint32_t write, uint32_t count);

@@ -17,9 +17,10 @@
 
 namespace drape::gles {
 
-/// Nodes of the coarsest level, solved densely: each of its nodes sums this many products in one
-/// pass. 64: the pass costs 4096 fetches, a small share of a 33^2 fine pass.
-constexpr uint32_t kCoarsestNodes = 64;
+/// Nodes of the coarsest level at most, solved densely: each of its nodes sums up to this many
+/// products in one pass (at most 16384 fetches, a small share of a 33^2 fine pass). 128 rather than
+/// 64 leaves out a level (two passes per substep) at 33^2 and 65^2.
+constexpr uint32_t kCoarsestNodes = 128;
 /// Members an aggregate may have (two RGBA32UI texels of indices); the greedy pass aims at
 /// kAggregateSize (2 x 2 on a grid) and merges leftovers into neighbours up to the cap.
 constexpr uint32_t kMaxMembers = DRAPE_MAX_MEMBERS;
