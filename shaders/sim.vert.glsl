@@ -19,7 +19,7 @@
 //                            start + displacement and v_d displacements (lambdas are not kept:
 //                            the next prediction resets them)
 //   DRAPE_IMPLICIT           predict for IMPLICIT (kernels::implicit_predict): writes the first
-//                            iterate v_d (inertia alone), v_prev (the same) and the target v_target
+//                            iterate v_d (inertia and drag), v_prev (the same) and the target v_target
 //   DRAPE_PASS_IMPLICIT      one iteration of IMPLICIT's solve on GLES: a block-Jacobi step on the
 //                            implicit Euler objective (kernels::implicit_residual's Phi; per
 //                            particle a 3x3 block like its Hessian's, see jacobi_step),
@@ -570,7 +570,7 @@ void main() {
         vec3 vi = a_aux.xyz * u_substep.x;
         vec3 a = external_accel(u_gravity, u_air_drag, u_wind, vi);
 #ifdef DRAPE_IMPLICIT
-        dn = implicit_predict(a_aux.xyz, u_substep.y, a, u_h, u_substep.z, first);
+        dn = implicit_predict(a_aux.xyz, u_substep.y, a, -u_air_drag * vi, u_h, u_substep.z, first);
 #else
 #ifdef DRAPE_DASHPOT
         vec3 force = vec3(0.0);
@@ -594,7 +594,7 @@ void main() {
 #endif
     v_d = vec4(dn, wi);
 #ifdef DRAPE_IMPLICIT
-    // kernels::implicit_predict: dn is the target y; the first iterate is the inertia alone (at
+    // kernels::implicit_predict: dn is the target y; the first iterate is the inertia and drag (at
     // rest exactly 0), kinematic particles their path
     v_d = vec4(wi != 0.0 ? first : dn, wi);
     v_prev = v_d;

@@ -44,7 +44,7 @@ void CpuCloth::refresh_backend() {
 
 template <class KinematicAt>
 void CpuCloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& kinematic_at) {
-    // Target y into target_, inertia as the first iterate into spare2; then the solve
+    // Target y into target_, inertia and drag as the first iterate into spare2; then the solve
     // (implicit_solve.h) minimises Phi (kernels::implicit_residual) from there.
     Particle* cur = x_.data();
     Particle* disp = d_.data();

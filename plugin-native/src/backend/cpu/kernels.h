@@ -242,17 +242,19 @@ struct SymMat3 {
 };
 
 /// IMPLICIT prediction (glsl::implicit_predict): the target y = d h/h_prev + a h (h + h_prev)/2
-/// (inertia and external forces, as predict<false>) and the first iterate d h/h_prev (inertia alone,
-/// so that at rest it is exactly 0: see implicit_residual).
+/// (inertia and external forces, as predict<false>) and the first iterate d h/h_prev plus the air
+/// drag's share (inertia and drag, so that at rest it is exactly 0: see implicit_residual).
 inline void implicit_predict(const SubstepContext& c, const Particle* x, const Particle* d, Particle* target,
                              Particle* first, uint32_t begin, uint32_t end) {
     const float inv_hp = 1.0f / c.h_prev;
     for (uint32_t i = begin; i < end; ++i) {
         const float wi = x[i].w;
         glm::vec3 inertia(0.0f), y(0.0f);
-        if (wi != 0.0f)
-            y = glsl::implicit_predict(glm::vec3(d[i]), c.h_ratio, external_accel(c, glm::vec3(d[i]) * inv_hp), c.h,
+        if (wi != 0.0f) {
+            const glm::vec3 v = glm::vec3(d[i]) * inv_hp;
+            y = glsl::implicit_predict(glm::vec3(d[i]), c.h_ratio, external_accel(c, v), -c.air_drag * v, c.h,
                                        c.accel_h, inertia);
+        }
         target[i] = Particle(y, wi);
         first[i] = Particle(inertia, wi);
     }
