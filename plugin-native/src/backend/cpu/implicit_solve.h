@@ -79,6 +79,7 @@ class ImplicitSolve {
                    uint32_t max_iterations, float tolerance, ThreadPool* pool, const glm::vec3* contact_normal);
 
   private:
+    static constexpr uint32_t kMaxHalvings = 8;  ///< of a step along which Phi rose (see solve)
     static constexpr int kParts = 2;  ///< parts of the nested dissection; the separator follows
     /// Particles per partial sum of a dot product: fixed, so that the order of the sums, and so their
     /// bits, do not depend on the thread count.
