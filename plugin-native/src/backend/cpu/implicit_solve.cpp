@@ -9,6 +9,11 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 #include <numeric>
+#if defined(__SSE__) || defined(_M_X64)
+#include <xmmintrin.h>
+#elif defined(__ARM_NEON)
+#include <arm_neon.h>
+#endif
 
 namespace drape {
 
@@ -31,6 +36,44 @@ double for_each_coupling(const NeighbourTable& nb, const drape_params& params, c
         if (row[j] >= 0) fn(j, k);
     }
     return sum;
+}
+
+using Lanes = ImplicitSolve::Lanes;
+
+Lanes lanes(const glm::vec4& r) { return {{r.x, r.y, r.z, 0.0f}}; }
+glm::vec3 vec3(const Lanes& a) { return glm::vec3(a.v[0], a.v[1], a.v[2]); }
+void scale(Lanes& a, float c) {
+    for (float& x : a.v) x *= c;
+}
+/// acc plus (kAdd) or minus the products value[k] y[index[k]] for k in [begin, end), one after the
+/// other, the four lanes in one SIMD register where there is one: the same bits as lane by lane (a
+/// SIMD multiply or add rounds each lane as a scalar one does) in about 10 instructions an entry
+/// where GCC 12 made 16-21 of the plain loop (scalar, or four entries at once with the sums' lanes
+/// subtracted one by one).
+template <bool kAdd>
+Lanes gather(Lanes acc, const Lanes* y, const uint32_t* index, const float* value, uint32_t begin, uint32_t end) {
+#if defined(__SSE__) || defined(_M_X64)
+    __m128 a = _mm_loadu_ps(acc.v);
+    for (uint32_t k = begin; k < end; ++k) {
+        const __m128 t = _mm_mul_ps(_mm_set1_ps(value[k]), _mm_loadu_ps(y[index[k]].v));
+        a = kAdd ? _mm_add_ps(a, t) : _mm_sub_ps(a, t);
+    }
+    _mm_storeu_ps(acc.v, a);
+#elif defined(__ARM_NEON)
+    float32x4_t a = vld1q_f32(acc.v);
+    for (uint32_t k = begin; k < end; ++k) {
+        const float32x4_t t = vmulq_n_f32(vld1q_f32(y[index[k]].v), value[k]);
+        a = kAdd ? vaddq_f32(a, t) : vsubq_f32(a, t);
+    }
+    vst1q_f32(acc.v, a);
+#else
+    for (uint32_t k = begin; k < end; ++k)
+        for (int l = 0; l < 4; ++l) {
+            const float t = value[k] * y[index[k]].v[l];
+            acc.v[l] = kAdd ? acc.v[l] + t : acc.v[l] - t;
+        }
+#endif
+    return acc;
 }
 
 }  // namespace
@@ -364,17 +407,16 @@ ImplicitSolve::Dots ImplicitSolve::precondition(const Particle* r, const Particl
 void ImplicitSolve::forward_part(int p, const Particle* r, const float* value, const float* inv_diag) {
     // L y = r over the part's rows, then the part's share of each separator row's sum.
     for (uint32_t row = begin_[p]; row < begin_[p + 1]; ++row) {
-        glm::vec3 v(r[particle_[row]]);
-        for (uint32_t k = row_start_[row]; k < row_start_[row + 1]; ++k) v -= value[k] * y_[row_col_[k]];
-        y_[row] = v * inv_diag[row];
+        Lanes v = lanes(r[particle_[row]]);
+        v = gather<false>(v, y_.data(), row_col_.data(), value, row_start_[row], row_start_[row + 1]);
+        scale(v, inv_diag[row]);
+        y_[row] = v;
     }
     const uint32_t sep = begin_[kParts], sep_count = begin_[kParts + 1] - sep;
     for (uint32_t s = 0; s < sep_count; ++s) {
         const uint32_t b = p == 0 ? row_start_[sep + s] : sep_split_[size_t(s) * kParts + p - 1];
         const uint32_t e = sep_split_[size_t(s) * kParts + p];
-        glm::vec3 sum(0.0f);
-        for (uint32_t k = b; k < e; ++k) sum += value[k] * y_[row_col_[k]];
-        sep_sum_[size_t(s) * kParts + p] = sum;
+        sep_sum_[size_t(s) * kParts + p] = gather<true>(Lanes{}, y_.data(), row_col_.data(), value, b, e);
     }
 }
 
@@ -384,11 +426,12 @@ void ImplicitSolve::separator(const Particle* r, const Particle* r_prev, Particl
     const uint32_t sep = begin_[kParts], m = begin_[kParts + 1];
     for (uint32_t row = sep; row < m; ++row) {
         const size_t s = size_t(row - sep) * kParts;
-        glm::vec3 v(r[particle_[row]]);
-        for (int p = 0; p < kParts; ++p) v -= sep_sum_[s + p];
-        for (uint32_t k = sep_split_[s + kParts - 1]; k < row_start_[row + 1]; ++k)
-            v -= value[k] * y_[row_col_[k]];
-        y_[row] = v * inv_diag[row];
+        Lanes v = lanes(r[particle_[row]]);
+        for (int p = 0; p < kParts; ++p)
+            for (int l = 0; l < 4; ++l) v.v[l] -= sep_sum_[s + p].v[l];
+        v = gather<false>(v, y_.data(), row_col_.data(), value, sep_split_[s + kParts - 1], row_start_[row + 1]);
+        scale(v, inv_diag[row]);
+        y_[row] = v;
     }
     part_dots_[kParts] = back_substitute(sep, m, r, r_prev, z, inv_diag);
 }
@@ -401,10 +444,10 @@ ImplicitSolve::Dots ImplicitSolve::back_substitute(uint32_t first, uint32_t last
     // the way.
     Dots dots;
     for (uint32_t row = last; row-- > first;) {
-        glm::vec3 v = y_[row];
-        for (uint32_t k = col_start_[row]; k < col_start_[row + 1]; ++k) v -= col_value_[k] * y_[col_row_[k]];
-        v *= inv_diag[row];
-        y_[row] = v;
+        Lanes y = gather<false>(y_[row], y_.data(), col_row_.data(), col_value_.data(), col_start_[row], col_start_[row + 1]);
+        scale(y, inv_diag[row]);
+        y_[row] = y;
+        const glm::vec3 v = vec3(y);
         const uint32_t i = particle_[row];
         glm::vec3 zi = with_blocks_ ? v + block_inv_[i] * glm::vec3(r[i]) : v;  // A^-1 r (+ D^-1 r)
         if (with_coarse_) zi += coarse_.at(i);

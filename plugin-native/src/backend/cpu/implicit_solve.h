@@ -52,6 +52,11 @@ namespace drape {
 class ImplicitSolve {
   public:
     using Particle = kernels::Particle;
+    /// x, y, z and a lane kept 0: the substitutions take an entry's three axes in one SIMD multiply
+    /// and subtract (implicit_solve.cpp, gather).
+    struct Lanes {
+        float v[4];
+    };
 
     /// True when stiffness, damping or an inverse mass (x[i].w) differ from those of the last
     /// factor (or there is none): the matrix must be rebuilt. Remembers the new values.
@@ -121,8 +126,8 @@ class ImplicitSolve {
     std::vector<float> col_value_;
     /// Per separator row, where its entries in each part's columns end (they are sorted by column).
     std::vector<uint32_t> sep_split_;
-    std::vector<glm::vec3> y_;        ///< scratch, one per factor row
-    std::vector<glm::vec3> sep_sum_;  ///< per part and separator row: sum of L_sk y_k over the part's k
+    std::vector<Lanes> y_;            ///< scratch, one per factor row
+    std::vector<Lanes> sep_sum_;      ///< per part and separator row: sum of L_sk y_k over the part's k
     Dots part_dots_[kParts + 1];      ///< the parts' and the separator's share of the dot products
     std::vector<double> block_sum_;   ///< over_blocks' per-block results
     // Conjugate gradients, one record per particle: residual, the previous one, preconditioned
