@@ -46,8 +46,10 @@ constexpr float kImplicitTolerance = 1e-3f;
 /// iteration reaches less of a substep's answer the longer the substep (the condition of its matrix
 /// grows with h^2), so many short substeps with few passes follow motion better than few long ones
 /// with many: 33^2 sheet dropped from two corners, rms distance from a converged CPU IMPLICIT run
-/// over the first second, 2 x 8 0.29 m, 16 x 2 0.19 m, 16 x 3 0.12 m (XPBD 16 x 1: 0.15 m), 32 x 1
-/// worse than 16 x 1. Long frame steps keep the substep and cost the same per simulated second.
+/// over the first second, before the coarse level (gles_coarse.h): 2 x 8 0.29 m, 16 x 2 0.19 m,
+/// 16 x 3 0.12 m (XPBD 16 x 1: 0.15 m), 32 x 1 worse than 16 x 1. With it (its first version), at
+/// 2e3 / 1e5 N/m structural: 16 x 3 0.029 / 0.18 m, 16 x 2 0.027 / 0.24 m, 8 x 3 0.070 / 0.39 m,
+/// 4 x 6 0.10 / 0.46 m. Long frame steps keep the substep and cost the same per simulated second.
 constexpr uint32_t kAutoIterationsImplicitGles = 3;
 constexpr float kMaxAutoSubstepImplicitGles = 1.0f / 960.0f;
 /// IMPLICIT: relative change of the substep beyond which its matrix is refactored (any matrix
