@@ -384,18 +384,13 @@ ImplicitSolve::Dots ImplicitSolve::precondition(const Particle* r, const Particl
                 if (uint32_t(p) % threads == t) fn(p);
         });
     };
-    auto run = [&](const float* value, const float* inv_diag) {
-        each_part([&](int p) { forward_part(p, r, value, inv_diag); });
-        separator(r, r_prev, z, value, inv_diag);
-        each_part([&](int p) {
-            part_dots_[p] = back_substitute(begin_[p], begin_[p + 1], r, r_prev, z, inv_diag);
-        });
-    };
     if (with_coarse_) {
         over_patches(pool, [&](uint32_t p) { coarse_.restrict_residual(r, p); });
         coarse_.solve();
     }
-    run(row_value_.data(), inv_diag_.data());
+    each_part([&](int p) { forward_part(p, r); });
+    separator(r, r_prev, z);
+    each_part([&](int p) { part_dots_[p] = back_substitute(begin_[p], begin_[p + 1], r, r_prev, z); });
     Dots sum;
     for (const Dots& d : part_dots_) {
         sum.rz += d.rz;
@@ -404,24 +399,23 @@ ImplicitSolve::Dots ImplicitSolve::precondition(const Particle* r, const Particl
     return sum;
 }
 
-void ImplicitSolve::forward_part(int p, const Particle* r, const float* value, const float* inv_diag) {
+void ImplicitSolve::forward_part(int p, const Particle* r) {
     // L y = r over the part's rows, then the part's share of each separator row's sum.
     for (uint32_t row = begin_[p]; row < begin_[p + 1]; ++row) {
         Lanes v = lanes(r[particle_[row]]);
-        v = gather<false>(v, y_.data(), row_col_.data(), value, row_start_[row], row_start_[row + 1]);
-        scale(v, inv_diag[row]);
+        v = gather<false>(v, y_.data(), row_col_.data(), row_value_.data(), row_start_[row], row_start_[row + 1]);
+        scale(v, inv_diag_[row]);
         y_[row] = v;
     }
     const uint32_t sep = begin_[kParts], sep_count = begin_[kParts + 1] - sep;
     for (uint32_t s = 0; s < sep_count; ++s) {
         const uint32_t b = p == 0 ? row_start_[sep + s] : sep_split_[size_t(s) * kParts + p - 1];
         const uint32_t e = sep_split_[size_t(s) * kParts + p];
-        sep_sum_[size_t(s) * kParts + p] = gather<true>(Lanes{}, y_.data(), row_col_.data(), value, b, e);
+        sep_sum_[size_t(s) * kParts + p] = gather<true>(Lanes{}, y_.data(), row_col_.data(), row_value_.data(), b, e);
     }
 }
 
-void ImplicitSolve::separator(const Particle* r, const Particle* r_prev, Particle* z, const float* value,
-                              const float* inv_diag) {
+void ImplicitSolve::separator(const Particle* r, const Particle* r_prev, Particle* z) {
     // Forward over the separator rows (the parts' shares summed in part order), then backward.
     const uint32_t sep = begin_[kParts], m = begin_[kParts + 1];
     for (uint32_t row = sep; row < m; ++row) {
@@ -429,15 +423,15 @@ void ImplicitSolve::separator(const Particle* r, const Particle* r_prev, Particl
         Lanes v = lanes(r[particle_[row]]);
         for (int p = 0; p < kParts; ++p)
             for (int l = 0; l < 4; ++l) v.v[l] -= sep_sum_[s + p].v[l];
-        v = gather<false>(v, y_.data(), row_col_.data(), value, sep_split_[s + kParts - 1], row_start_[row + 1]);
-        scale(v, inv_diag[row]);
+        v = gather<false>(v, y_.data(), row_col_.data(), row_value_.data(), sep_split_[s + kParts - 1], row_start_[row + 1]);
+        scale(v, inv_diag_[row]);
         y_[row] = v;
     }
-    part_dots_[kParts] = back_substitute(sep, m, r, r_prev, z, inv_diag);
+    part_dots_[kParts] = back_substitute(sep, m, r, r_prev, z);
 }
 
 ImplicitSolve::Dots ImplicitSolve::back_substitute(uint32_t first, uint32_t last, const Particle* r,
-                                                   const Particle* r_prev, Particle* z, const float* inv_diag) {
+                                                   const Particle* r_prev, Particle* z) {
     // L^T y' = y over rows [first, last), last row first, by columns of L: a row's y' is its y less
     // the shares of the later rows its column reaches (its own part's and the separator's, so the
     // separator runs before the parts). z takes y' at each row's particle, with its dot products on
@@ -445,7 +439,7 @@ ImplicitSolve::Dots ImplicitSolve::back_substitute(uint32_t first, uint32_t last
     Dots dots;
     for (uint32_t row = last; row-- > first;) {
         Lanes y = gather<false>(y_[row], y_.data(), col_row_.data(), col_value_.data(), col_start_[row], col_start_[row + 1]);
-        scale(y, inv_diag[row]);
+        scale(y, inv_diag_[row]);
         y_[row] = y;
         const glm::vec3 v = vec3(y);
         const uint32_t i = particle_[row];

@@ -104,10 +104,9 @@ class ImplicitSolve {
     /// z = A^-1 r (+ D^-1 r: with_blocks_) on the free particles (z stays 0 on kinematic ones), with r.z and z.r_prev.
     Dots precondition(const Particle* r, const Particle* r_prev, Particle* z, ThreadPool* pool);
     // The substitutions with L's values (one per entry: A's three axes are equal).
-    void forward_part(int p, const Particle* r, const float* value, const float* inv_diag);
-    void separator(const Particle* r, const Particle* r_prev, Particle* z, const float* value, const float* inv_diag);
-    Dots back_substitute(uint32_t first, uint32_t last, const Particle* r, const Particle* r_prev, Particle* z,
-                         const float* inv_diag);
+    void forward_part(int p, const Particle* r);
+    void separator(const Particle* r, const Particle* r_prev, Particle* z);
+    Dots back_substitute(uint32_t first, uint32_t last, const Particle* r, const Particle* r_prev, Particle* z);
 
     float h_ = 0;
     std::vector<float> key_;           ///< stiffness, damping and inverse masses it was built from
