@@ -25,6 +25,24 @@ struct NeighbourTable {
     std::vector<uint32_t> count;      ///< used slots per particle
 };
 
+/// Calls fn(j, k) for every spring of particle i whose group has positive stiffness, with
+/// k = stiffness[group] + kd_h, the spring's coefficient in the constant implicit matrix
+/// M/h^2 + sum (k + kd/h) that the CPU factors and GLES coarsens; returns the sum of the k.
+template <class Fn>
+double for_each_spring_coefficient(const NeighbourTable& nb, const float* stiffness, double kd_h, uint32_t i,
+                                   Fn&& fn) {
+    double sum = 0;
+    for (uint32_t s = 0; s < nb.count[i]; ++s) {
+        const size_t slot = size_t(i) * nb.slots + s;
+        const uint8_t g = nb.group[slot];
+        if (g >= DRAPE_GROUP_COUNT || !(stiffness[g] > 0)) continue;
+        const double k = stiffness[g] + kd_h;
+        sum += k;
+        fn(nb.index[slot], k);
+    }
+    return sum;
+}
+
 struct Topology {
     uint32_t vertex_count = 0;                ///< caller vertices
     uint32_t particle_count = 0;              ///< after welding

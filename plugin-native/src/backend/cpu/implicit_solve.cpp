@@ -21,21 +21,13 @@ namespace {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
-/// Calls fn(j, k) for every spring of free particle i that A couples to another free particle j
-/// (k + kd/h its coefficient), and returns the sum of the coefficients of all its springs.
+/// for_each_spring_coefficient over the springs whose other end j is free (has a factor row).
 template <class Fn>
 double for_each_coupling(const NeighbourTable& nb, const drape_params& params, const std::vector<int>& row,
                          uint32_t i, double kd_h, Fn&& fn) {
-    double sum = 0;
-    for (uint32_t s = 0; s < nb.count[i]; ++s) {
-        const uint8_t g = nb.group[size_t(i) * nb.slots + s];
-        if (g >= DRAPE_GROUP_COUNT || !(params.stiffness[g] > 0)) continue;
-        const double k = params.stiffness[g] + kd_h;
-        sum += k;
-        const uint32_t j = nb.index[size_t(i) * nb.slots + s];
+    return for_each_spring_coefficient(nb, params.stiffness, kd_h, i, [&](uint32_t j, double k) {
         if (row[j] >= 0) fn(j, k);
-    }
-    return sum;
+    });
 }
 
 using Lanes = ImplicitSolve::Lanes;

@@ -14,7 +14,7 @@ struct Rows {
     std::vector<bool> free;  ///< takes part (level 0: not pinned)
 };
 
-Rows fine_matrix(const NeighbourTable& nb, const std::vector<float>& w, const float stiffness[3],
+Rows fine_matrix(const NeighbourTable& nb, const std::vector<float>& w, const float stiffness[DRAPE_GROUP_COUNT],
                  float damping, float h) {
     const uint32_t n = uint32_t(nb.count.size());
     Rows a;
@@ -24,17 +24,10 @@ Rows fine_matrix(const NeighbourTable& nb, const std::vector<float>& w, const fl
     for (uint32_t i = 0; i < n; ++i) {
         if (!(w[i] > 0)) continue;
         a.free[i] = true;
-        a.diag[i] = 1.0 / (double(w[i]) * h * h);
-        for (uint32_t s = 0; s < nb.count[i]; ++s) {
-            const size_t slot = size_t(i) * nb.slots + s;
-            const uint8_t g = nb.group[slot];
-            if (g >= 3 || !(stiffness[g] > 0)) continue;
-            const double k =
-                double(stiffness[g]) + double(damping) / h;  // along the spring (jacobi_step's block)
-            a.diag[i] += k;
-            const uint32_t j = nb.index[slot];
-            if (w[j] > 0) a.off[i].push_back({j, -k});
-        }
+        a.diag[i] = 1.0 / (double(w[i]) * h * h) +  // the springs along their length (jacobi_step's block)
+                    for_each_spring_coefficient(nb, stiffness, double(damping) / h, i, [&](uint32_t j, double k) {
+                        if (w[j] > 0) a.off[i].push_back({j, -k});
+                    });
     }
     return a;
 }
@@ -159,7 +152,7 @@ uint32_t bits(float f) {
 }  // namespace
 
 CoarseHierarchy cook_coarse(const NeighbourTable& nb, const std::vector<float>& inverse_mass,
-                            const float stiffness[3], float damping, float h, uint32_t tex_width) {
+                            const float stiffness[DRAPE_GROUP_COUNT], float damping, float h, uint32_t tex_width) {
     CoarseHierarchy out;
     std::vector<Rows> mats{fine_matrix(nb, inverse_mass, stiffness, damping, h)};
     std::vector<std::vector<uint32_t>> parents;  // parents[l]: level l -> level l + 1

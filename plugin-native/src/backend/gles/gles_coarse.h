@@ -47,6 +47,6 @@ struct CoarseHierarchy {
 /// The hierarchy for a substep h: masses from inverse masses w (0: pinned or kinematic), springs
 /// from the neighbour table where stiffness[group] > 0, damping kd along each spring.
 CoarseHierarchy cook_coarse(const NeighbourTable& nb, const std::vector<float>& inverse_mass,
-                            const float stiffness[3], float damping, float h, uint32_t tex_width);
+                            const float stiffness[DRAPE_GROUP_COUNT], float damping, float h, uint32_t tex_width);
 
 }  // namespace drape::gles
