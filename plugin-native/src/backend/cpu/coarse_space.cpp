@@ -1,12 +1,55 @@
 #include "backend/cpu/coarse_space.h"
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <cmath>
 #include <glm/common.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
 namespace drape {
+
+namespace {
+
+/// S(o) v = o x v.
+glm::mat3 cross_matrix(const glm::vec3& o) { return glm::mat3(0, o.z, -o.y, -o.z, 0, o.x, o.y, -o.x, 0); }
+
+/// In place, the lower part of the m x m row-major a becomes its Cholesky factor; false if a is not
+/// positive definite (or m is 0).
+bool dense_cholesky(double* a, uint32_t m) {
+    for (uint32_t j = 0; j < m; ++j) {
+        double* row_j = &a[size_t(j) * m];
+        double d = row_j[j];
+        for (uint32_t k = 0; k < j; ++k) d -= row_j[k] * row_j[k];
+        if (!(d > 0)) return false;
+        d = std::sqrt(d);
+        row_j[j] = d;
+        for (uint32_t i = j + 1; i < m; ++i) {
+            double* row_i = &a[size_t(i) * m];
+            double s = row_i[j];
+            for (uint32_t k = 0; k < j; ++k) s -= row_i[k] * row_j[k];
+            row_i[j] = s / d;
+        }
+    }
+    return m > 0;
+}
+
+/// b = (L L^T)^-1 b with dense_cholesky's L.
+void dense_solve(const double* l, double* b, uint32_t m) {
+    for (uint32_t i = 0; i < m; ++i) {
+        double s = b[i];
+        for (uint32_t k = 0; k < i; ++k) s -= l[size_t(i) * m + k] * b[k];
+        b[i] = s / l[size_t(i) * m + i];
+    }
+    for (uint32_t i = m; i-- > 0;) {
+        double s = b[i];
+        for (uint32_t k = i + 1; k < m; ++k) s -= l[size_t(k) * m + i] * b[k];
+        b[i] = s / l[size_t(i) * m + i];
+    }
+}
+
+}  // namespace
 
 void CoarseSpace::build(const Topology& topo, const Particle* x) {
     const uint32_t n = topo.particle_count;
@@ -49,12 +92,6 @@ void CoarseSpace::build(const Topology& topo, const Particle* x) {
     motion_.assign(dofs(), 0.0f);
 }
 
-namespace {
-
-/// S(o) v = o x v.
-glm::mat3 cross_matrix(const glm::vec3& o) { return glm::mat3(0, o.z, -o.y, -o.z, 0, o.x, o.y, -o.x, 0); }
-
-}  // namespace
 
 void CoarseSpace::assemble(const kernels::SubstepContext& c, const Particle* start, const Particle* disp, uint32_t p) {
     // Row block p of Hc = G^T H G. With G_i = [I | -S(o_i)] (a translation t and rotation w move
@@ -123,24 +160,7 @@ void CoarseSpace::assemble(const kernels::SubstepContext& c, const Particle* sta
     add(p, self_tt, self_tr, glm::transpose(self_tr), self_rr);
 }
 
-bool CoarseSpace::factor() {
-    const uint32_t m = dofs();
-    for (uint32_t j = 0; j < m; ++j) {
-        double* row_j = &matrix_[size_t(j) * m];
-        double d = row_j[j];
-        for (uint32_t k = 0; k < j; ++k) d -= row_j[k] * row_j[k];
-        if (!(d > 0)) return false;
-        d = std::sqrt(d);
-        row_j[j] = d;
-        for (uint32_t i = j + 1; i < m; ++i) {
-            double* row_i = &matrix_[size_t(i) * m];
-            double s = row_i[j];
-            for (uint32_t k = 0; k < j; ++k) s -= row_i[k] * row_j[k];
-            row_i[j] = s / d;
-        }
-    }
-    return m > 0;
-}
+bool CoarseSpace::factor() { return dense_cholesky(matrix_.data(), dofs()); }
 
 void CoarseSpace::restrict_residual(const Particle* r, uint32_t p) {
     double* out = &rhs_[size_t(p) * kDof];
@@ -156,18 +176,224 @@ void CoarseSpace::restrict_residual(const Particle* r, uint32_t p) {
 }
 
 void CoarseSpace::solve() {
-    const uint32_t m = dofs();
-    for (uint32_t i = 0; i < m; ++i) {
-        double s = rhs_[i];
-        for (uint32_t k = 0; k < i; ++k) s -= matrix_[size_t(i) * m + k] * rhs_[k];
-        rhs_[i] = s / matrix_[size_t(i) * m + i];
+    dense_solve(matrix_.data(), rhs_.data(), dofs());
+    for (uint32_t i = 0; i < dofs(); ++i) motion_[i] = float(rhs_[i]);
+}
+
+void CoarseLevels::build(const Topology& topo, const Particle* x) {
+    const uint32_t n = topo.particle_count;
+    const NeighbourTable& nb = topo.nbr;
+    levels_.clear();
+    cell_.assign(n, -1);
+    // Cell size: twice the mean structural rest length, so level 1 holds about 2 x 2 particles.
+    double spacing = 0;
+    uint32_t springs = 0;
+    glm::vec3 lo(INFINITY);
+    for (uint32_t i = 0; i < n; ++i) {
+        if (x[i].w == 0.0f) continue;
+        lo = glm::min(lo, topo.rest_position[i]);
+        for (uint32_t s = 0; s < nb.count[i]; ++s)
+            if (nb.group[size_t(i) * nb.slots + s] == DRAPE_GROUP_STRUCTURAL) {
+                spacing += nb.rest[size_t(i) * nb.slots + s];
+                ++springs;
+            }
     }
-    for (uint32_t i = m; i-- > 0;) {
-        double s = rhs_[i];
-        for (uint32_t k = i + 1; k < m; ++k) s -= matrix_[size_t(k) * m + i] * rhs_[k];
-        rhs_[i] = s / matrix_[size_t(i) * m + i];
-        motion_[i] = float(rhs_[i]);
+    if (springs == 0 || !(spacing > 0)) return;
+    const float cell = float(2.0 * spacing / springs);
+    // Integer cell coordinates, a quarter cell off so that a grid's rows fall inside cells, not on
+    // their borders; each level halves them. Nodes are numbered in the order of their first particle.
+    std::vector<glm::ivec3> coord;
+    std::map<std::array<int, 3>, uint32_t> node_of;
+    auto node = [&](const glm::ivec3& k) {
+        const auto [it, added] = node_of.insert({{k.x, k.y, k.z}, uint32_t(coord.size())});
+        if (added) coord.push_back(k);
+        return it->second;
+    };
+    for (uint32_t i = 0; i < n; ++i)
+        if (x[i].w != 0.0f)
+            cell_[i] = int32_t(node(glm::ivec3(glm::floor((topo.rest_position[i] - lo) / cell + 0.25f))));
+    levels_.emplace_back();
+    levels_[0].count = uint32_t(coord.size());
+    member_start_.assign(levels_[0].count + 1, 0);
+    for (uint32_t i = 0; i < n; ++i)
+        if (cell_[i] >= 0) ++member_start_[cell_[i] + 1];
+    for (uint32_t a = 0; a < levels_[0].count; ++a) member_start_[a + 1] += member_start_[a];
+    member_.resize(member_start_.back());
+    std::vector<uint32_t> fill(member_start_.begin(), member_start_.end() - 1);
+    for (uint32_t i = 0; i < n; ++i)
+        if (cell_[i] >= 0) member_[fill[cell_[i]]++] = i;
+    // Level 1's pattern: the cells its members' springs reach.
+    std::vector<std::vector<uint32_t>> reach(levels_[0].count);
+    for (uint32_t i = 0; i < n; ++i)
+        if (cell_[i] >= 0)
+            for (uint32_t s = 0; s < nb.count[i]; ++s) {
+                const int32_t b = cell_[nb.index[size_t(i) * nb.slots + s]];
+                if (b >= 0 && b != cell_[i]) reach[cell_[i]].push_back(uint32_t(b));
+            }
+    // Coarser levels until kCoarsestNodes; each level's pattern is its finer level's, merged.
+    while (true) {
+        Level& level = levels_.back();
+        level.row_start.assign(1, 0);
+        level.col.clear();
+        for (std::vector<uint32_t>& cols : reach) {
+            std::sort(cols.begin(), cols.end());
+            cols.erase(std::unique(cols.begin(), cols.end()), cols.end());
+            level.col.insert(level.col.end(), cols.begin(), cols.end());
+            level.row_start.push_back(uint32_t(level.col.size()));
+        }
+        level.diag.assign(level.count, Block());
+        level.off.assign(level.col.size(), Block());
+        level.diag_inv.assign(level.count, Block());
+        for (std::vector<glm::dvec3>* v : {&level.r, &level.e, &level.t}) v->assign(level.count, glm::dvec3(0.0));
+        if (level.count <= kCoarsestNodes) break;
+        const std::vector<glm::ivec3> fine = std::move(coord);
+        coord.clear();
+        node_of.clear();
+        level.parent.resize(level.count);
+        for (uint32_t a = 0; a < level.count; ++a) level.parent[a] = node(fine[a] >> 1);
+        if (coord.size() == level.count) break;  // no coarser
+        std::vector<std::vector<uint32_t>> coarse(coord.size());
+        for (uint32_t a = 0; a < level.count; ++a)
+            for (uint32_t e = level.row_start[a]; e < level.row_start[a + 1]; ++e)
+                if (level.parent[level.col[e]] != level.parent[a])
+                    coarse[level.parent[a]].push_back(level.parent[level.col[e]]);
+        reach = std::move(coarse);
+        levels_.emplace_back();
+        levels_.back().count = uint32_t(coord.size());
     }
+    levels_.back().parent.clear();
+    const uint32_t m = 3 * levels_.back().count;
+    dense_.assign(size_t(m) * m, 0.0);
+    dense_rhs_.assign(m, 0.0);
+}
+
+namespace {
+
+CoarseLevels::Block block(const kernels::SymMat3& m) {
+    return {{m.diag.x, m.diag.y, m.diag.z, m.off.x, m.off.y, m.off.z}};
+}
+
+glm::dmat3 matrix(const CoarseLevels::Block& b) {
+    const double* v = b.v;
+    return glm::dmat3(v[0], v[3], v[4], v[3], v[1], v[5], v[4], v[5], v[2]);
+}
+
+/// Index of column b in a row's sorted columns [begin, end) (it is there).
+uint32_t find_column(const std::vector<uint32_t>& col, uint32_t begin, uint32_t end, uint32_t b) {
+    return uint32_t(std::lower_bound(col.begin() + begin, col.begin() + end, b) - col.begin());
+}
+
+}  // namespace
+
+void CoarseLevels::assemble_node(const kernels::SubstepContext& c, const Particle* start, const Particle* disp,
+                                 uint32_t a) {
+    // Row a of H_1 = P_1^T H P_1: per member i its mass over h^2 and, per spring to a particle j outside
+    // the cell, its block K_ij on the diagonal and -K_ij at j's cell (none to a kinematic j). A spring
+    // inside the cell moves with it: no share.
+    Level& level = levels_[0];
+    const float kd_h = c.damping / c.h;
+    const float inv_h2 = 1.0f / (c.h * c.h);
+    const uint32_t begin = level.row_start[a], end = level.row_start[a + 1];
+    for (uint32_t e = begin; e < end; ++e) level.off[e] = Block();
+    kernels::SymMat3 diag;  // float: the same sums as the residual's blocks
+    for (uint32_t k = member_start_[a]; k < member_start_[a + 1]; ++k) {
+        const uint32_t i = member_[k];
+        const glm::vec3 xi = glm::vec3(start[i]) + glm::vec3(disp[i]);
+        diag.diag += inv_h2 / disp[i].w;
+        kernels::for_active_springs(c, i, [&](uint32_t j, float rest, float k) {
+            const int32_t b = cell_[j];
+            if (b == int32_t(a)) return;
+            float len;
+            const glm::vec3 n = kernels::direction(xi - (glm::vec3(start[j]) + glm::vec3(disp[j])), &len);
+            const float across = kernels::glsl::implicit_tension(len, rest, k, false);
+            kernels::SymMat3 kij;  // glsl::implicit_spring_block
+            kij.add_outer(kernels::glsl::implicit_block_along(k, kd_h, across), n);
+            kij.diag += across;
+            diag.diag += kij.diag;
+            diag.off += kij.off;
+            if (b >= 0) level.off[find_column(level.col, begin, end, uint32_t(b))].add(block(kij), -1);
+        });
+    }
+    level.diag[a] = block(diag);
+}
+
+bool CoarseLevels::factor() {
+    if (levels_.empty()) return false;
+    // H_l+1 = P^T H_l P: each node's blocks go to its parent's row; a block between two nodes of
+    // one parent to that parent's diagonal.
+    for (size_t l = 0; l + 1 < levels_.size(); ++l) {
+        Level& fine = levels_[l];
+        Level& coarse = levels_[l + 1];
+        std::fill(coarse.diag.begin(), coarse.diag.end(), Block());
+        std::fill(coarse.off.begin(), coarse.off.end(), Block());
+        for (uint32_t a = 0; a < fine.count; ++a) {
+            const uint32_t p = fine.parent[a];
+            coarse.diag[p].add(fine.diag[a]);
+            for (uint32_t e = fine.row_start[a]; e < fine.row_start[a + 1]; ++e) {
+                const uint32_t q = fine.parent[fine.col[e]];
+                if (q == p)
+                    coarse.diag[p].add(fine.off[e]);
+                else
+                    coarse.off[find_column(coarse.col, coarse.row_start[p], coarse.row_start[p + 1], q)].add(fine.off[e]);
+            }
+        }
+        for (uint32_t a = 0; a < fine.count; ++a) {
+            const glm::dmat3 inv = glm::inverse(matrix(fine.diag[a]));
+            fine.diag_inv[a] = {{inv[0][0], inv[1][1], inv[2][2], inv[1][0], inv[2][0], inv[2][1]}};
+        }
+    }
+    const Level& last = levels_.back();
+    const uint32_t m = 3 * last.count;
+    std::fill(dense_.begin(), dense_.end(), 0.0);
+    auto put = [&](uint32_t a, uint32_t b, const Block& block) {
+        const glm::dmat3 full = matrix(block);
+        for (int col = 0; col < 3; ++col)
+            for (int row = 0; row < 3; ++row) dense_[size_t(3 * a + row) * m + 3 * b + col] = full[col][row];
+    };
+    for (uint32_t a = 0; a < last.count; ++a) {
+        put(a, a, last.diag[a]);
+        for (uint32_t e = last.row_start[a]; e < last.row_start[a + 1]; ++e) put(a, last.col[e], last.off[e]);
+    }
+    return dense_cholesky(dense_.data(), m);
+}
+
+void CoarseLevels::apply(const Particle* r) {
+    Level& level = levels_[0];
+    for (uint32_t a = 0; a < level.count; ++a) {
+        glm::dvec3 sum(0.0);
+        for (uint32_t k = member_start_[a]; k < member_start_[a + 1]; ++k) sum += glm::dvec3(glm::vec3(r[member_[k]]));
+        level.r[a] = sum;
+    }
+    cycle(0);
+}
+
+void CoarseLevels::cycle(size_t l) {
+    Level& level = levels_[l];
+    if (l + 1 == levels_.size()) {
+        for (uint32_t a = 0; a < level.count; ++a)
+            for (int k = 0; k < 3; ++k) dense_rhs_[3 * a + k] = level.r[a][k];
+        dense_solve(dense_.data(), dense_rhs_.data(), 3 * level.count);
+        for (uint32_t a = 0; a < level.count; ++a)
+            level.e[a] = glm::dvec3(dense_rhs_[3 * a], dense_rhs_[3 * a + 1], dense_rhs_[3 * a + 2]);
+        return;
+    }
+    // t = r - H_l e
+    auto residual = [&] {
+        for (uint32_t a = 0; a < level.count; ++a) {
+            glm::dvec3 t = level.r[a] - level.diag[a] * level.e[a];
+            for (uint32_t e = level.row_start[a]; e < level.row_start[a + 1]; ++e) t -= level.off[e] * level.e[level.col[e]];
+            level.t[a] = t;
+        }
+    };
+    Level& coarse = levels_[l + 1];
+    for (uint32_t a = 0; a < level.count; ++a) level.e[a] = kSmoothing * (level.diag_inv[a] * level.r[a]);
+    residual();
+    std::fill(coarse.r.begin(), coarse.r.end(), glm::dvec3(0.0));
+    for (uint32_t a = 0; a < level.count; ++a) coarse.r[level.parent[a]] += level.t[a];
+    cycle(l + 1);
+    for (uint32_t a = 0; a < level.count; ++a) level.e[a] += coarse.e[level.parent[a]];
+    residual();
+    for (uint32_t a = 0; a < level.count; ++a) level.e[a] += kSmoothing * (level.diag_inv[a] * level.t[a]);
 }
 
 }  // namespace drape

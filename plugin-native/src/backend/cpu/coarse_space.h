@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 #include <vector>
 
@@ -59,6 +60,68 @@ class CoarseSpace {
     std::vector<double> matrix_;     ///< Hc, then its Cholesky factor (dense, row-major, lower part)
     std::vector<double> rhs_;        ///< G^T r, then Hc^-1 G^T r
     std::vector<float> motion_;      ///< Hc^-1 G^T r per patch: translation, rotation
+};
+
+// IMPLICIT's coarse levels: smooth motions too fine for the patches. A taut sheet's out-of-plane
+// waves (a quarter of its width long) cost nearly their mass alone in H, while D charges them the
+// springs' tension and A their stiffness, so a few iterations applied only a small share of their
+// force and they kept ringing. Translations of small aggregates show them, at little cost: a jump
+// across an aggregate's border bends its springs without stretching them, which H charges only their
+// tension. The preconditioner adds z += P_1 V(P_1^T r): level 1 groups the free particles in cells
+// of about 2 x 2 (twice their rest spacing), level l + 1 the cells of level l 2 x 2, down to
+// kCoarsestNodes; H_1 = P_1^T H P_1 and H_l+1 = P^T H_l P (Galerkin, piecewise-constant P) at the
+// solve's iterate; V is one symmetric V-cycle (damped block Jacobi before and after the coarser
+// level's correction, dense Cholesky at the coarsest): aggregation multigrid (Vanek, Mandel and
+// Brezina 1996, without the prolongation smoothing), as GLES does on A (gles_coarse.h).
+class CoarseLevels {
+  public:
+    using Particle = kernels::Particle;
+    /// A symmetric 3x3 block in double: xx, yy, zz, xy, xz, yz.
+    struct Block {
+        double v[6] = {};
+        void add(const Block& b, double s = 1) {
+            for (int k = 0; k < 6; ++k) v[k] += s * b.v[k];
+        }
+        glm::dvec3 operator*(const glm::dvec3& x) const {
+            return {v[0] * x.x + v[3] * x.y + v[4] * x.z, v[3] * x.x + v[1] * x.y + v[5] * x.z,
+                    v[4] * x.x + v[5] * x.y + v[2] * x.z};
+        }
+    };
+
+    /// Cells and the levels' block patterns over the free particles (x[i].w != 0). Allocates.
+    void build(const Topology& topo, const Particle* x);
+
+    // One solve's use, in this order.
+    /// Level 1's rows of H at start + disp (as kernels::implicit_curvature clamps it, plus the
+    /// masses over h^2), node by node (the nodes may run on different threads), then the coarser
+    /// levels.
+    void assemble_node(const kernels::SubstepContext& c, const Particle* start, const Particle* disp, uint32_t a);
+    uint32_t node_count() const { return levels_.empty() ? 0 : levels_[0].count; }
+    /// The coarser levels, the smoothers' block inverses and the coarsest level's Cholesky factor;
+    /// false when there are no levels or a matrix is not positive definite (then it must not be used).
+    bool factor();
+    /// One V-cycle on level 1's share of r.
+    void apply(const Particle* r);
+    /// The correction at particle i (0 on kinematic particles).
+    glm::vec3 at(uint32_t i) const { return cell_[i] < 0 ? glm::vec3(0.0f) : glm::vec3(levels_[0].e[cell_[i]]); }
+
+  private:
+    static constexpr uint32_t kCoarsestNodes = 32;  ///< solved densely: 96 unknowns, ~30 k multiply-adds
+    static constexpr double kSmoothing = 2.0 / 3.0;  ///< Jacobi weight, below 2 / lambda_max(D_l^-1 H_l)
+    struct Level {
+        uint32_t count = 0;
+        std::vector<uint32_t> parent;              ///< per node its node on the next level (none on the last)
+        std::vector<uint32_t> row_start, col;      ///< off-diagonal blocks by rows, columns sorted
+        std::vector<Block> diag, off;
+        std::vector<Block> diag_inv;               ///< smoother
+        std::vector<glm::dvec3> r, e, t;           ///< residual, correction, scratch
+    };
+    std::vector<Level> levels_;          ///< [0]: level 1 (cells of particles)
+    std::vector<int32_t> cell_;          ///< per particle its level-1 node, -1 if kinematic
+    std::vector<uint32_t> member_start_, member_;  ///< level-1 node a's particles
+    std::vector<double> dense_;          ///< coarsest H, then its Cholesky factor (row-major, lower)
+    std::vector<double> dense_rhs_;
+    void cycle(size_t l);
 };
 
 }  // namespace drape

@@ -206,6 +206,7 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     in_contact_.reserve(n);
     block_sum_.assign((n + kBlock - 1) / kBlock, 0.0);
     coarse_.build(topo, x);
+    levels_.build(topo, x);
 }
 
 template <class Fn>
@@ -280,6 +281,7 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
     const bool plain_step = max_iterations == 1 && h_ < c.h * (1.0f + kImplicitRefactor);
     with_blocks_ = !plain_step;  // D comes with the first residual
     with_coarse_ = false;
+    with_levels_ = false;
     // Preconditioned nonlinear conjugate gradients: the first direction is z = P^-1 r, then
     // Polak-Ribiere (clamped at 0, which restarts on z), each with the step length of one Newton
     // step along the direction, alpha = r.p / p.Hp (Shewchuk 1994, "An introduction to the
@@ -311,8 +313,10 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         if (it == 1 && with_blocks_) {
             // Not converged in one iteration, so in motion: from here on the preconditioner adds the
             // coarse space (coarse_space.h), assembled at this iterate; a cloth at rest never pays for it.
-            over_patches(pool, [&](uint32_t p) { coarse_.assemble(c, start, iterate, p); });
+            over_items(pool, coarse_.patch_count(), [&](uint32_t p) { coarse_.assemble(c, start, iterate, p); });
             with_coarse_ = coarse_.factor();
+            over_items(pool, levels_.node_count(), [&](uint32_t a) { levels_.assemble_node(c, start, iterate, a); });
+            with_levels_ = levels_.factor();
             restart = true;
         }
         const Dots dots = precondition(r_.data(), r_prev_.data(), first ? p_.data() : z_.data(), pool);
@@ -347,8 +351,7 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
 }
 
 template <class Fn>
-void ImplicitSolve::over_patches(ThreadPool* pool, Fn&& fn) {
-    const uint32_t count = coarse_.patch_count();
+void ImplicitSolve::over_items(ThreadPool* pool, uint32_t count, Fn&& fn) {
     if (pool && pool->size() > 1 && r_.size() >= ThreadPool::kMinParallelCount) {
         const uint32_t threads = pool->size();
         pool->run_on_all([&](uint32_t t) {
@@ -377,9 +380,10 @@ ImplicitSolve::Dots ImplicitSolve::precondition(const Particle* r, const Particl
         });
     };
     if (with_coarse_) {
-        over_patches(pool, [&](uint32_t p) { coarse_.restrict_residual(r, p); });
+        over_items(pool, coarse_.patch_count(), [&](uint32_t p) { coarse_.restrict_residual(r, p); });
         coarse_.solve();
     }
+    if (with_levels_) levels_.apply(r);
     each_part([&](int p) { forward_part(p, r); });
     separator(r, r_prev, z);
     each_part([&](int p) { part_dots_[p] = back_substitute(begin_[p], begin_[p + 1], r, r_prev, z); });
@@ -437,6 +441,7 @@ ImplicitSolve::Dots ImplicitSolve::back_substitute(uint32_t first, uint32_t last
         const uint32_t i = particle_[row];
         glm::vec3 zi = with_blocks_ ? v + block_inv_[i] * glm::vec3(r[i]) : v;  // A^-1 r (+ D^-1 r)
         if (with_coarse_) zi += coarse_.at(i);
+        if (with_levels_) zi += levels_.at(i);
         if (normal_) zi -= std::min(0.0f, glm::dot(zi, normal_[i])) * normal_[i];  // no step inwards at a contact
         z[i] = Particle(zi, 0.0f);
         dots.rz += double(glm::dot(zi, glm::vec3(r[i])));

@@ -1,7 +1,7 @@
 // The IMPLICIT model's solve of one substep (CpuCloth::implicit_substep): minimise Phi
 // (kernels::implicit_residual) by nonlinear preconditioned conjugate gradients on the force
-// residual r = -grad Phi. The preconditioner is additive, P^-1 = A^-1 + D^-1 (+ G Hc^-1 G^T from
-// the second iteration on):
+// residual r = -grad Phi. The preconditioner is additive, P^-1 = A^-1 + D^-1 (+ G Hc^-1 G^T +
+// P_1 V P_1^T from the second iteration on):
 // - A = M/h^2 + sum_springs (k + kd/h) (e_i - e_j)(e_i - e_j)^T over the free particles (kinematic
 //   ones enter only through the residual; Projective Dynamics' constant matrix, Bouaziz et al.
 //   2014), factored once by a sparse Cholesky. It is right for the stiff smooth modes (rigid
@@ -23,6 +23,11 @@
 //   (in motion), so a cloth at rest costs what it did. Fall 1.01 / 1.01 (largest vertex distance
 //   from MASS_SPRING over the size 0.035 / 0.075, was 0.43 / 0.83; 33^2: 0.13 / 0.14, was 0.87 /
 //   1.25), for ~20 % more work a step in motion.
+// - P_1 V P_1^T: the coarse levels (coarse_space.h, CoarseLevels), translations of small cells with
+//   one V-cycle on H, also from the second iteration: a taut sheet's smooth out-of-plane waves,
+//   which the patches are too coarse to show, cost nearly their mass alone in H while D charges
+//   them the tension and A the stiffness; with a few iterations they kept ringing at the user's
+//   default drag (65^2 sheet: 4.6e-4 of the displacement after 5.5 s, exact implicit Euler 1.2e-6).
 // Step lengths come from H (kernels::implicit_curvature), except for a 1-iteration budget, which
 // takes the plain step d += A^-1 r without D (see solve). With D the taut sheets settle without
 // refactoring A at rest with its springs' tension (which the library did until D came: 56 bytes per
@@ -94,9 +99,10 @@ class ImplicitSolve {
     template <class Fn>
     double over_blocks(ThreadPool* pool, Fn&& fn);
 
-    /// fn(p) for each patch of the coarse space, patch p on thread p mod size (or all on the caller).
+    /// fn(k) for k in [0, count) (the coarse space's patches, the coarse levels' level-1 nodes), k on
+    /// thread k mod size (or all on the caller).
     template <class Fn>
-    void over_patches(ThreadPool* pool, Fn&& fn);
+    void over_items(ThreadPool* pool, uint32_t count, Fn&& fn);
 
     struct Dots {
         double rz = 0, z_r_prev = 0;  ///< r.z and z.r_prev
@@ -136,6 +142,8 @@ class ImplicitSolve {
     bool with_blocks_ = true;           ///< this solve's preconditioner adds D^-1 r (not a plain 1-iteration step)
     CoarseSpace coarse_;
     bool with_coarse_ = false;          ///< this solve's preconditioner adds the coarse correction
+    CoarseLevels levels_;
+    bool with_levels_ = false;          ///< this solve's preconditioner adds the coarse levels' correction
     std::vector<uint32_t> in_contact_;       ///< particles with a contact normal in this solve
     const glm::vec3* normal_ = nullptr;  ///< this solve's contact normals, null if none
 };
