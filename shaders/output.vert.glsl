@@ -19,6 +19,7 @@
 #define DRAPE_WRITE_POSITION 1
 #define DRAPE_WRITE_NORMAL 1
 #endif
+#include "layout.h"  // DRAPE_TEX_WIDTH
 
 precision highp float;
 precision highp int;
@@ -33,7 +34,6 @@ layout(std140) uniform DrapeSim {
     float u_air_drag;           // 1/s, drape_params.air_drag
     float u_h;                  // s, substep length
     float u_jacobi_coupling;    // kJacobiCoupling (core/params.h)
-    int u_tex_width;            // texels per row of every texture
     vec3 u_stiffness;           // drape_params.stiffness per drape_group (0: group off)
     vec3 u_compliance;          // XPBD: 1 / (k h^2) per group, 0 where off
     vec3 u_damping_ratio;       // XPBD: damping / (k h) per group, 0 where off
@@ -54,7 +54,7 @@ out vec3 v_normal;
 DRAPE_KEEP_DECLS
 #endif
 
-ivec2 texel(int t) { return ivec2(t % u_tex_width, t / u_tex_width); }
+ivec2 texel(int t) { return ivec2(t % DRAPE_TEX_WIDTH, t / DRAPE_TEX_WIDTH); }
 vec3 position(int p) { return texelFetch(u_x, texel(p), 0).xyz; }
 
 void main() {

@@ -69,7 +69,7 @@
 // texels of highp RGBA32F textures (neighbours; texel j for state records, j*DRAPE_RECORD for
 // iterate records). The neighbour table is a RGBA32UI texture, texel i*DRAPE_SLOTS+s = (index,
 // floatBitsToUint(rest), group, 0); the particle table texel i = (neighbour count, active springs,
-// 0, 0). All textures are u_tex_width texels wide (row-major).
+// 0, 0). All textures are DRAPE_TEX_WIDTH texels wide (row-major).
 #if !defined(DRAPE_PASS_MASS_SPRING) && !defined(DRAPE_PASS_PREDICT) && !defined(DRAPE_PASS_CONSTRAINT) && \
     !defined(DRAPE_PASS_IMPLICIT) && !defined(DRAPE_PASS_COARSE) && !defined(DRAPE_PASS_TETHER) && !defined(DRAPE_PASS_INTERACT) && !defined(DRAPE_PASS_MOVE) && \
     !defined(DRAPE_PASS_STILL)
@@ -110,7 +110,6 @@ layout(std140) uniform DrapeSim {
     float u_air_drag;           // 1/s, drape_params.air_drag
     float u_h;                  // s, substep length
     float u_jacobi_coupling;    // kJacobiCoupling (core/params.h)
-    int u_tex_width;            // texels per row of every texture
     vec3 u_stiffness;           // drape_params.stiffness per drape_group (0: group off)
     vec3 u_compliance;          // XPBD: 1 / (k h^2) per group, 0 where off
     vec3 u_damping_ratio;       // XPBD: damping / (k h) per group, 0 where off
@@ -238,7 +237,7 @@ in vec4 a_lambda7;
 #endif
 #endif
 
-ivec2 texel(int t) { return ivec2(t % u_tex_width, t / u_tex_width); }
+ivec2 texel(int t) { return ivec2(t % DRAPE_TEX_WIDTH, t / DRAPE_TEX_WIDTH); }
 #if defined(DRAPE_PASS_CONSTRAINT) || defined(DRAPE_PASS_IMPLICIT) || defined(DRAPE_COARSE_RESTRICT)
 vec4 fetch_x(int j) { return texelFetch(u_x, texel(j * DRAPE_RECORD), 0); }  // iterate record
 #else
@@ -403,11 +402,14 @@ vec3 smoothed_residual(uint c) {
 #define DRAPE_MEMBER_TERM smoothed_residual
 #endif
 #ifdef DRAPE_MEMBER_TERM
-// Sum over node c's members (u_coarse.x: the members' table texels).
+// Sum over node c's members (u_coarse.x: the members' table texels, filled from the first). The
+// loop stops at the first empty texel: most aggregates fill one, and a SIMD batch of nodes (llvmpipe,
+// GPU warps) whose nodes all did skips the second's terms.
 vec3 sum_members(int c) {
     vec3 sum = vec3(0.0);
     for (int q = 0; q < DRAPE_MAX_MEMBERS / 4; ++q) {
         uvec4 m = fetch_table(int(u_coarse.x) + (DRAPE_MAX_MEMBERS / 4) * c + q);
+        if (m.x == DRAPE_NO_NODE) break;
         sum += DRAPE_MEMBER_TERM(m.x) + DRAPE_MEMBER_TERM(m.y) + DRAPE_MEMBER_TERM(m.z) + DRAPE_MEMBER_TERM(m.w);
     }
     return sum;

@@ -676,7 +676,7 @@ void GlesCloth::refresh(int b) {
         active_unit_ = b;
     }
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, gl_.buffers[b]);
-    unpack_bound_ = true;
+    unpack_buffer_ = gl_.buffers[b];
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTexWidth, GLsizei(tex_rows_), GL_RGBA, GL_FLOAT, nullptr);
     tex_stale_[b] = false;
 }
@@ -693,7 +693,8 @@ void GlesCloth::begin_passes() {
     }
     active_unit_ = kTrisUnit;
     used_program_ = 0;
-    unpack_bound_ = false;
+    bound_vao_ = 0;
+    unpack_buffer_ = 0;
 }
 
 void GlesCloth::use_program(Program& p, int x, int aux) {
@@ -711,6 +712,16 @@ void GlesCloth::use_program(Program& p, int x, int aux) {
     }
 }
 
+void GlesCloth::set_uniform(Program& p, int u, const glm::vec4& v) {
+    if (p.u[u] < 0 || ((p.set >> u & 1u) && p.value[u] == v)) return;
+    if (u == uChebyshev)  // the one vec2
+        glUniform2f(p.u[u], v.x, v.y);
+    else
+        glUniform4fv(p.u[u], 1, &v.x);
+    p.value[u] = v;
+    p.set |= 1u << u;
+}
+
 GLuint GlesCloth::vertex_array(int x, int aux, uint32_t inputs) {
     const uint32_t key = uint32_t(x) | uint32_t(aux) << 2 | inputs;
     if (auto it = vaos_.find(key); it != vaos_.end()) return it->second;
@@ -719,6 +730,7 @@ GLuint GlesCloth::vertex_array(int x, int aux, uint32_t inputs) {
     GLuint vao = 0;
     glGenVertexArrays(1, &vao);
     glBindVertexArray(vao);
+    bound_vao_ = vao;
     glBindBuffer(GL_ARRAY_BUFFER, gl_.buffers[x]);
     glEnableVertexAttribArray(aX);
     glVertexAttribPointer(aX, 4, GL_FLOAT, GL_FALSE, stride, nullptr);
@@ -751,13 +763,20 @@ GLuint GlesCloth::vertex_array(int x, int aux, uint32_t inputs) {
     return vao;
 }
 
-void GlesCloth::feedback_draw(GLuint vao, uint32_t count) {
-    if (unpack_bound_) {
-        // A buffer must not be bound elsewhere while transform feedback writes it (ES 3.0 2.15.2).
-        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-        unpack_bound_ = false;
-    }
+void GlesCloth::bind_vertex_array(GLuint vao) {
+    if (bound_vao_ == vao) return;
     glBindVertexArray(vao);
+    bound_vao_ = vao;
+}
+
+void GlesCloth::feedback_draw(GLuint vao, uint32_t count, GLuint written, GLuint written2) {
+    if (unpack_buffer_ && (unpack_buffer_ == written || unpack_buffer_ == written2)) {
+        // A buffer must not be bound elsewhere while transform feedback writes it (ES 3.0 2.15.2);
+        // an input left bound for its texture refresh may stay.
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+        unpack_buffer_ = 0;
+    }
+    bind_vertex_array(vao);
     glBeginTransformFeedback(GL_POINTS);
     glDrawArrays(GL_POINTS, 0, GLsizei(count));
     glEndTransformFeedback();
@@ -777,7 +796,7 @@ void GlesCloth::draw(GLuint vao, int out, int out2) {
         glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[out], 0,
                           GLsizeiptr(n * record_ * sizeof(Particle)));
     }
-    feedback_draw(vao, uint32_t(n));
+    feedback_draw(vao, uint32_t(n), gl_.buffers[out], out2 >= 0 ? gl_.buffers[out2] : 0);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
     if (out2 >= 0) glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, 0);
     tex_stale_[out] = true;
@@ -788,6 +807,7 @@ void GlesCloth::drop_pass_objects() {
     glDeleteVertexArrays(GLsizei(gl_.vaos.size()), gl_.vaos.data());
     gl_.vaos.clear();
     vaos_.clear();
+    bound_vao_ = 0;
     for (bool& stale : tex_stale_) stale = true;
 }
 
@@ -986,7 +1006,6 @@ void GlesCloth::use_uniforms(float h) {
     u.air_drag = params_.air_drag;
     u.h = h;
     u.jacobi_coupling = kJacobiCoupling;
-    u.tex_width = GLint(kTexWidth);
     for (int g = 0; g < DRAPE_GROUP_COUNT; ++g) {
         const float k = params_.stiffness[g];
         u.stiffness[g] = k;
@@ -1015,12 +1034,10 @@ void GlesCloth::run_pass(Program& p, int x, int aux, int out, int out2, bool con
         refresh(aux);
     }
     use_program(p, x, aux);
-    if (p.u[uSubstep] >= 0) glUniform4fv(p.u[uSubstep], 1, &sub.x);
-    if (p.u[uChebyshev] >= 0) glUniform2f(p.u[uChebyshev], chebyshev.x, chebyshev.y);
-    if (p.u[uCoarse] >= 0) {  // the iteration that adds the coarse correction: where it reads it
-        const glm::vec4 at(float(coarse_.levels[0].info), float(coarse_.levels[1].correction), 0.0f, 0.0f);
-        glUniform4fv(p.u[uCoarse], 1, &at.x);
-    }
+    set_uniform(p, uSubstep, sub);
+    set_uniform(p, uChebyshev, glm::vec4(chebyshev, 0.0f, 0.0f));
+    if (p.u[uCoarse] >= 0)  // the iteration that adds the coarse correction: where it reads it
+        set_uniform(p, uCoarse, glm::vec4(float(coarse_.levels[0].info), float(coarse_.levels[1].correction), 0.0f, 0.0f));
     const uint32_t inputs = constraint           ? kIterateRecords
                             : !kinematic_on_gpu() ? 0u
                                                   : kKinematicInputs | (grabs_on_gpu_ ? kGrabTargets : 0u);
@@ -1092,10 +1109,10 @@ Result GlesCloth::prepare_coarse(float h) {
 
 void GlesCloth::coarse_pass(Program& p, int x, int aux, const glm::vec4& offsets, uint32_t write, uint32_t count) {
     use_program(p, x, aux);
-    glUniform4fv(p.u[uCoarse], 1, &offsets.x);
+    set_uniform(p, uCoarse, offsets);
     glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.coarse_vec, GLintptr(size_t(write) * 16),
                       GLsizeiptr(size_t(count) * 16));
-    feedback_draw(gl_.coarse_vao, count);
+    feedback_draw(gl_.coarse_vao, count, gl_.coarse_vec);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
     // The rows written, into the texture the next pass reads (sections start on whole rows).
     if (active_unit_ != kCoarseVecUnit) {
@@ -1103,7 +1120,7 @@ void GlesCloth::coarse_pass(Program& p, int x, int aux, const glm::vec4& offsets
         active_unit_ = kCoarseVecUnit;
     }
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, gl_.coarse_vec);
-    unpack_bound_ = true;
+    unpack_buffer_ = gl_.coarse_vec;
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, GLint(write / kTexWidth), kTexWidth, GLsizei(rows_for(count)), GL_RGBA, GL_FLOAT,
                     reinterpret_cast<const void*>(size_t(write) * 16));
 }
@@ -1467,11 +1484,7 @@ void GlesCloth::issue_still(Program& p, float dt) {
     use_program(p, -1, -1);
     const float limit = ix_.sleep_threshold * h_prev_;  // as interaction_end_step
     glUniform1f(p.u[uStillLimit2], limit * limit);
-    if (unpack_bound_) {
-        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-        unpack_bound_ = false;
-    }
-    glBindVertexArray(vertex_array(g_[0], g_[1], 0));
+    bind_vertex_array(vertex_array(g_[0], g_[1], 0));
     glBeginQuery(GL_ANY_SAMPLES_PASSED, gl_.queries[slot]);
     glDrawArrays(GL_POINTS, 0, GLsizei(topo_.particle_count));
     glEndQuery(GL_ANY_SAMPLES_PASSED);
@@ -1494,6 +1507,7 @@ Result GlesCloth::write_output() {
         // Made once per output buffer and layout (set_output drops it).
         glGenVertexArrays(1, &gl_.out_vao);
         glBindVertexArray(gl_.out_vao);
+        bound_vao_ = gl_.out_vao;
         glBindBuffer(GL_ARRAY_BUFFER, gl_.vertex_to_particle);
         glEnableVertexAttribArray(aParticle);
         glVertexAttribIPointer(aParticle, 1, GL_UNSIGNED_INT, 4, nullptr);
@@ -1511,7 +1525,7 @@ Result GlesCloth::write_output() {
     use_uniforms(uniforms_.h);
     use_program(*p, g_[0], -1);
     glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, out_buffer_, 0, bytes);
-    feedback_draw(gl_.out_vao, count);
+    feedback_draw(gl_.out_vao, count, out_buffer_);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
     return gl_error("writing the output buffer");
 }
@@ -1730,7 +1744,8 @@ void GlesCloth::forget_gl() {
     for (bool& stale : tex_stale_) stale = true;
     used_program_ = 0;
     active_unit_ = -1;
-    unpack_bound_ = false;
+    bound_vao_ = 0;
+    unpack_buffer_ = 0;
     out_buffer_ = 0;  // a buffer of the lost context: the caller sets one of the new context
 }
 

@@ -44,12 +44,12 @@
 
 #include "core/cloth.h"
 #include "core/drag.h"  // kMaxGrabs
+#include "shaders/layout.h"  // DRAPE_TEX_WIDTH
 
 namespace drape::gles {
 
-/// Texels per row of every texture (ES 3.0 guarantees GL_MAX_TEXTURE_SIZE >= 2048; rows are
-/// checked against the real limit). One width for all textures: one uniform, one texel().
-constexpr uint32_t kTexWidth = 1024;
+/// Texels per row of every texture (shaders/layout.h). One width for all textures: one texel().
+constexpr uint32_t kTexWidth = DRAPE_TEX_WIDTH;
 
 /// True when an OpenGL ES >= 3.0 context is current on this thread; otherwise *why says why.
 bool context_current(std::string* why = nullptr);
@@ -177,6 +177,8 @@ private:
         GLuint id = 0;
         GLint u[kMaxUniforms] = {};  ///< locations of kUniformNames (gles_cloth.cpp)
         GLint unit_x = -1, unit_aux = -1;  ///< texture units u_x and u_aux are set to now
+        glm::vec4 value[kMaxUniforms] = {};  ///< what set_uniform last set (where `set` has its bit)
+        uint32_t set = 0;
     };
 
     Result ensure_gl();
@@ -194,14 +196,20 @@ private:
     void refresh(int b);
     /// Makes p current with u_x / u_aux on the units of buffers x / aux (-1: not sampled).
     void use_program(Program& p, int x, int aux);
+    /// Sets uniform u (u_chebyshev: v.xy, else a vec4) of the current program p, unless it holds v
+    /// already or p lacks it.
+    void set_uniform(Program& p, int u, const glm::vec4& v);
+    /// Binds vao unless it is bound (since begin_passes).
+    void bind_vertex_array(GLuint vao);
     /// Vertex array reading buffer x (own record: iterate records with their lambdas when `inputs`
     /// has kIterateRecords) and aux (state records), plus the inputs `inputs` names. Made once.
     GLuint vertex_array(int x, int aux, uint32_t inputs);
     /// One transform-feedback draw over the particles into buffer out (out2 < 0: one interleaved
     /// iterate record per particle) or out and out2 (one state record each, separate attribs).
     void draw(GLuint vao, int out, int out2);
-    /// Begin, draw `count` points, end, with the transform-feedback buffers already bound.
-    void feedback_draw(GLuint vao, uint32_t count);
+    /// Begin, draw `count` points, end, with the transform-feedback buffers (`written`,
+    /// `written2`) already bound.
+    void feedback_draw(GLuint vao, uint32_t count, GLuint written, GLuint written2 = 0);
     void drop_pass_objects();
     bool predict_has_dashpot() const;
     Result program(int pass, Program** out);
@@ -300,7 +308,8 @@ private:
     std::map<uint32_t, GLuint> vaos_;              // names in gl_.vaos by vertex_array's key
     GLuint used_program_ = 0;      // within begin_passes .. end of step
     int active_unit_ = -1;
-    bool unpack_bound_ = false;    // a particle buffer is bound to GL_PIXEL_UNPACK_BUFFER
+    GLuint unpack_buffer_ = 0;     // bound to GL_PIXEL_UNPACK_BUFFER (a texture's source), 0: none
+    GLuint bound_vao_ = 0;         // within begin_passes .. end of step, 0: unknown
     GLint max_vertex_uniform_vectors_ = 0;
     bool gpu_newer_ = false;       // CPU copy is stale
     // h_prev_ and fresh_ as they were when the CPU copy was last the state (before the GPU

@@ -181,7 +181,7 @@ void GlesCloth::grab_pass(bool release) {
     const GLuint vao = grab_vertex_array();
     glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[g_[2]], 0, GLsizeiptr(n * sizeof(Particle)));
     glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 1, gl_.grab_targets, 0, GLsizeiptr(n * sizeof(glm::vec3)));
-    feedback_draw(vao, uint32_t(n));
+    feedback_draw(vao, uint32_t(n), gl_.buffers[g_[2]], gl_.grab_targets);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, 0);
     tex_stale_[g_[2]] = true;
@@ -226,11 +226,7 @@ void GlesCloth::run_grabs() {
     glClearBufferfv(GL_DEPTH, 0, &far);
     glUseProgram(pick_program_);
     used_program_ = pick_program_;
-    if (unpack_bound_) {
-        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-        unpack_bound_ = false;
-    }
-    glBindVertexArray(grab_vertex_array());
+    bind_vertex_array(grab_vertex_array());
     for (uint32_t s = 0; s < kMaxGrabs; ++s) {
         GpuGrab& g = gpu_grabs_[s];
         if (!g.pick_pending) continue;

@@ -199,7 +199,7 @@ void GlesSelfCollide::run(GlesCloth& c, int x, int d, int out_x, int out_d) {
     const GLuint vao = c.vertex_array(x, d, 0);
     // Hash: the particles as points, layer by layer, into the layer textures.
     glDisable(GL_RASTERIZER_DISCARD);
-    glBindVertexArray(vao);
+    c.bind_vertex_array(vao);
     static const GLuint kEmpty[4] = {0, 0, 0, 0};
     for (uint32_t k = 0; k < kSelfLayers; ++k) {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, o.fbos[k]);

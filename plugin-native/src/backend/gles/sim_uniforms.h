@@ -17,33 +17,30 @@ struct SimUniforms {
     float air_drag;  ///< 1/s, drape_params.air_drag
     float h;  ///< s, substep length
     float jacobi_coupling;  ///< kJacobiCoupling (core/params.h)
-    int32_t tex_width;  ///< texels per row of every texture
-    uint32_t pad0_[3];
     float stiffness[3];  ///< drape_params.stiffness per drape_group (0: group off)
-    uint32_t pad1_[1];
+    uint32_t pad0_[1];
     float compliance[3];  ///< XPBD: 1 / (k h^2) per group, 0 where off
-    uint32_t pad2_[1];
+    uint32_t pad1_[1];
     float damping_ratio[3];  ///< XPBD: damping / (k h) per group, 0 where off
-    uint32_t pad3_[1];
+    uint32_t pad2_[1];
     float gravity[3];  ///< m/s^2, drape_params.gravity
-    uint32_t pad4_[1];
+    uint32_t pad3_[1];
     float wind[3];  ///< m/s, drape_params.wind
-    uint32_t pad5_[1];
+    uint32_t pad4_[1];
     float origin[3];  ///< m, Cloth::origin (whole metres: exact in float); the output pass adds it
-    uint32_t pad6_[1];
+    uint32_t pad5_[1];
 };
-static_assert(sizeof(SimUniforms) == 128, "std140 size");
+static_assert(sizeof(SimUniforms) == 112, "std140 size");
 static_assert(offsetof(SimUniforms, damping) == 0, "std140 offset");
 static_assert(offsetof(SimUniforms, air_drag) == 4, "std140 offset");
 static_assert(offsetof(SimUniforms, h) == 8, "std140 offset");
 static_assert(offsetof(SimUniforms, jacobi_coupling) == 12, "std140 offset");
-static_assert(offsetof(SimUniforms, tex_width) == 16, "std140 offset");
-static_assert(offsetof(SimUniforms, stiffness) == 32, "std140 offset");
-static_assert(offsetof(SimUniforms, compliance) == 48, "std140 offset");
-static_assert(offsetof(SimUniforms, damping_ratio) == 64, "std140 offset");
-static_assert(offsetof(SimUniforms, gravity) == 80, "std140 offset");
-static_assert(offsetof(SimUniforms, wind) == 96, "std140 offset");
-static_assert(offsetof(SimUniforms, origin) == 112, "std140 offset");
+static_assert(offsetof(SimUniforms, stiffness) == 16, "std140 offset");
+static_assert(offsetof(SimUniforms, compliance) == 32, "std140 offset");
+static_assert(offsetof(SimUniforms, damping_ratio) == 48, "std140 offset");
+static_assert(offsetof(SimUniforms, gravity) == 64, "std140 offset");
+static_assert(offsetof(SimUniforms, wind) == 80, "std140 offset");
+static_assert(offsetof(SimUniforms, origin) == 96, "std140 offset");
 
 /// GLSL member names and their std140 offsets: the backend checks the driver's layout against them
 /// when it links a program.
@@ -55,13 +52,12 @@ constexpr struct {
     {"u_air_drag", 4},
     {"u_h", 8},
     {"u_jacobi_coupling", 12},
-    {"u_tex_width", 16},
-    {"u_stiffness", 32},
-    {"u_compliance", 48},
-    {"u_damping_ratio", 64},
-    {"u_gravity", 80},
-    {"u_wind", 96},
-    {"u_origin", 112},
+    {"u_stiffness", 16},
+    {"u_compliance", 32},
+    {"u_damping_ratio", 48},
+    {"u_gravity", 64},
+    {"u_wind", 80},
+    {"u_origin", 96},
 };
 
 }  // namespace drape::gles
