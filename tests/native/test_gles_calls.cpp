@@ -81,10 +81,36 @@ constexpr uint64_t kCallsPerFrame = 100;
 // parameters live in a uniform block, uploaded only when they change.
 constexpr uint64_t kUniformsPerPass = 3;
 
-// IMPLICIT's coarse correction per substep (sim.vert.glsl DRAPE_PASS_COARSE): this cloth's 1022 free
-// particles make two coarse levels (about 256 and 64 nodes, gles_coarse.h), so restrict, one down
-// pass, the dense solve and one up pass (the next iteration adds the correction).
-constexpr uint64_t kImplicitCoarsePasses = 4;
+// IMPLICIT's coarse correction (sim.vert.glsl DRAPE_PASS_COARSE, gles_coarse.h): one V-cycle per
+// substep, each pass one point per node of a level: restrict to level 1, down to each coarser level,
+// the dense solve at the coarsest, up to level 1 (the next iteration adds the correction). So its
+// draws per substep are the level sizes L down and back up, L + reverse(L): 2 |L| passes, with L as
+// the cook leaves it: each level at most 4/5 of the one above (it stops where aggregation stalls),
+// only the last within kCoarsestNodes.
+constexpr uint32_t kCoarsestNodes = 128;
+std::vector<GLsizei>* g_draw_counts = nullptr;  // the counted frames' draws' point counts
+PFNGLDRAWARRAYSPROC g_driver_draw = nullptr;
+void GL_APIENTRY record_draw(GLenum mode, GLint first, GLsizei count) {
+    if (g_draw_counts) g_draw_counts->push_back(count);
+    g_driver_draw(mode, first, count);
+}
+
+/// The coarse levels' sizes (L) that one V-cycle per substep drew, from the draws other than the
+/// particle passes' (`particles` points each); empty if there were none or they were no V-cycle.
+std::vector<GLsizei> coarse_levels(const std::vector<GLsizei>& draws, GLsizei particles) {
+    std::vector<GLsizei> seq;
+    for (GLsizei c : draws)
+        if (c != particles) seq.push_back(c);
+    size_t depth = 1;  // the solve repeats the coarsest level's size
+    while (depth < seq.size() && seq[depth] != seq[depth - 1]) ++depth;
+    if (seq.empty() || depth == seq.size()) return {};
+    std::vector<GLsizei> levels(seq.begin(), seq.begin() + std::ptrdiff_t(depth));
+    for (size_t k = 0; k < seq.size(); ++k) {
+        const size_t at = k % (2 * depth);
+        if (seq[k] != levels[at < depth ? at : 2 * depth - 1 - at]) return {};
+    }
+    return levels;
+}
 
 // Self-collision: a draw per hash layer (gles_self_collide.h kSelfLayers) and the collide pass.
 constexpr uint64_t kSelfHashLayers = 8;
@@ -92,7 +118,8 @@ constexpr uint32_t cols = 32, rows = 32;
 
 /// The GL calls per frame of the case's cloth over its counted frames (after warm-up frames), with a
 /// grab the same frames with the finger still, its stats and positions after them.
-void count_frames(const BudgetCase& bc, GlCalls* per_frame, GlCalls* still, drape_stats* st, std::vector<float>* x) {
+void count_frames(const BudgetCase& bc, GlCalls* per_frame, GlCalls* still, drape_stats* st, std::vector<float>* x,
+                  std::vector<GLsizei>* draws) {
     WorldPtr w = make_world(1);
     drape_grid_desc g = grid_desc(cols, rows, 1.0f, 1.0f);
     g.origin[1] = 1.0f;
@@ -181,7 +208,11 @@ void count_frames(const BudgetCase& bc, GlCalls* per_frame, GlCalls* still, drap
     const int warm_up = bc.extra == Extra::GrabAndTethers ? 4 : 3, counted = 5;
     for (int f = 0; f < warm_up; ++f) frame(f);
     const GlCalls start = GlCalls::now();
+    g_driver_draw = reinterpret_cast<PFNGLDRAWARRAYSPROC>(drape_gl_replace("glDrawArrays", reinterpret_cast<void*>(&record_draw)));
+    g_draw_counts = draws;
     for (int f = warm_up; f < warm_up + counted; ++f) frame(f);
+    g_draw_counts = nullptr;
+    drape_gl_replace("glDrawArrays", reinterpret_cast<void*>(g_driver_draw));
     *per_frame = GlCalls::now().per_frame_since(start, counted);
     if (bc.extra == Extra::GrabAndTethers) {
         // The same frames with the finger still (compared by the test).
@@ -200,10 +231,23 @@ TEST_P(GlesCallBudget, SteadyFramesReadNothingUploadNothingAndCostAFixedNumberOf
     GlCalls per_frame, still;
     drape_stats st{};
     std::vector<float> x;
-    count_frames(bc, &per_frame, &still, &st, &x);
+    std::vector<GLsizei> draws;
+    count_frames(bc, &per_frame, &still, &st, &x, &draws);
     if (HasFatalFailure()) return;
     uint64_t passes_per_substep = bc.model == DRAPE_MODEL_MASS_SPRING ? 1 : 1 + st.iterations;
-    if (bc.model == DRAPE_MODEL_IMPLICIT) passes_per_substep += kImplicitCoarsePasses;
+    const std::vector<GLsizei> levels = coarse_levels(draws, GLsizei(cols * rows));
+    if (bc.model == DRAPE_MODEL_IMPLICIT) {
+        ASSERT_FALSE(levels.empty()) << "IMPLICIT draws one coarse V-cycle per substep";
+        GLsizei above = GLsizei(cols * rows - 2);  // free particles
+        for (size_t k = 0; k < levels.size(); ++k) {
+            EXPECT_LE(5 * levels[k], 4 * above) << "level " << k + 1;
+            EXPECT_EQ(levels[k] <= GLsizei(kCoarsestNodes), k + 1 == levels.size()) << "level " << k + 1;
+            above = levels[k];
+        }
+        passes_per_substep += 2 * levels.size();
+    } else {
+        EXPECT_TRUE(levels.empty()) << "only IMPLICIT has coarse passes";
+    }
     if (bc.extra != Extra::None && bc.extra != Extra::SelfCollision && bc.extra != Extra::SelfCollisionOff)
         ++passes_per_substep;                                           // tethers
     if (bc.extra == Extra::SelfCollision) passes_per_substep += kSelfHashLayers + 1;  // hash layers, collide
@@ -212,7 +256,7 @@ TEST_P(GlesCallBudget, SteadyFramesReadNothingUploadNothingAndCostAFixedNumberOf
     if (bc.extra == Extra::DragAndTethers) ++passes;                    // drag: first substep
     if (bc.extra == Extra::GrabAndTethers) ++passes;                    // the grab pass
     std::cout << "[ gl calls ] " << bc.name << ", " << cols << "x" << rows << ", " << st.substeps << " substeps, "
-              << passes << " passes per frame: " << per_frame << "\n";
+              << passes << " passes per frame (" << 2 * levels.size() << " coarse a substep): " << per_frame << "\n";
 
     EXPECT_EQ(per_frame.reads, 0u);
     EXPECT_EQ(per_frame.uploads, 0u);
@@ -237,7 +281,8 @@ TEST_P(GlesCallBudget, SteadyFramesReadNothingUploadNothingAndCostAFixedNumberOf
         GlCalls never, unused;
         drape_stats st_never{};
         std::vector<float> x_never;
-        count_frames({"never", bc.model, Extra::None}, &never, &unused, &st_never, &x_never);
+        std::vector<GLsizei> draws_never;
+        count_frames({"never", bc.model, Extra::None}, &never, &unused, &st_never, &x_never, &draws_never);
         EXPECT_EQ(per_frame.total, never.total);
         EXPECT_EQ(per_frame.draws, never.draws);
     }
