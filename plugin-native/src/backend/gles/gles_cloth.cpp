@@ -149,7 +149,7 @@ void delete_now(GlObjects& o) {
     glDeleteTextures(1, &o.pick_tex);
     GLuint coarse_tex[2] = {o.coarse_table, o.coarse_vec_tex};
     glDeleteTextures(2, coarse_tex);
-    glDeleteBuffers(1, &o.coarse_vec);
+    glDeleteBuffers(2, o.coarse_vec);
     if (o.coarse_vao) o.vaos.push_back(o.coarse_vao);
     glDeleteRenderbuffers(1, &o.pick_depth);
     if (o.pick_fbo) glDeleteFramebuffers(1, &o.pick_fbo);
@@ -1102,16 +1102,18 @@ Result GlesCloth::prepare_coarse(float h) {
     std::memcpy(coarse_key_, key, sizeof key);
     GLuint tex[2] = {gl_.coarse_table, gl_.coarse_vec_tex};
     glDeleteTextures(2, tex);
-    glDeleteBuffers(1, &gl_.coarse_vec);
-    gl_.coarse_table = gl_.coarse_vec_tex = gl_.coarse_vec = 0;
+    glDeleteBuffers(2, gl_.coarse_vec);
+    gl_.coarse_table = gl_.coarse_vec_tex = gl_.coarse_vec[0] = gl_.coarse_vec[1] = 0;
     if (!coarse_.active()) return {};
     const uint32_t table_rows = rows_for(coarse_.table.size() / 4);
     gl_.coarse_table = make_texture(GL_RGBA32UI, table_rows);
     upload_uint_texture(gl_.coarse_table, gl_.staging, table_rows, coarse_.table);
     gl_.coarse_vec_tex = make_texture(GL_RGBA32F, coarse_.vector_texels / kTexWidth);
-    glGenBuffers(1, &gl_.coarse_vec);
-    glBindBuffer(GL_ARRAY_BUFFER, gl_.coarse_vec);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(size_t(coarse_.vector_texels) * 16), nullptr, GL_DYNAMIC_COPY);
+    glGenBuffers(2, gl_.coarse_vec);
+    for (GLuint b : gl_.coarse_vec) {
+        glBindBuffer(GL_ARRAY_BUFFER, b);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(size_t(coarse_.vector_texels) * 16), nullptr, GL_DYNAMIC_COPY);
+    }
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     if (!gl_.coarse_vao) glGenVertexArrays(1, &gl_.coarse_vao);
     return gl_error("uploading the coarse levels");
@@ -1120,17 +1122,21 @@ Result GlesCloth::prepare_coarse(float h) {
 void GlesCloth::coarse_pass(Program& p, int x, int aux, const glm::vec4& offsets, uint32_t write, uint32_t count) {
     use_program(p, x, aux);
     set_uniform(p, uCoarse, offsets);
-    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.coarse_vec, GLintptr(size_t(write) * 16),
-                      GLsizeiptr(size_t(count) * 16));
-    feedback_draw(gl_.coarse_vao, count, gl_.coarse_vec);
+    // Into the other vector buffer than the last pass: the one the texture was just refreshed from
+    // may stay on the pixel-unpack binding (only the texture is read, so which buffer holds a
+    // section's last values does not matter).
+    const GLuint vec = gl_.coarse_vec[coarse_flip_];
+    coarse_flip_ ^= 1;
+    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, vec, GLintptr(size_t(write) * 16), GLsizeiptr(size_t(count) * 16));
+    feedback_draw(gl_.coarse_vao, count, vec);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
     // The rows written, into the texture the next pass reads (sections start on whole rows).
     if (active_unit_ != kCoarseVecUnit) {
         glActiveTexture(GL_TEXTURE0 + GLenum(kCoarseVecUnit));
         active_unit_ = kCoarseVecUnit;
     }
-    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, gl_.coarse_vec);
-    unpack_buffer_ = gl_.coarse_vec;
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, vec);
+    unpack_buffer_ = vec;
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, GLint(write / kTexWidth), kTexWidth, GLsizei(rows_for(count)), GL_RGBA, GL_FLOAT,
                     reinterpret_cast<const void*>(size_t(write) * 16));
 }
@@ -1361,10 +1367,12 @@ Result GlesCloth::gpu_step(float dt) {
             std::swap(cur, spare);
             std::swap(disp, spare2);
         } else {
-            // predict: displacements into spare; iterate spare <-> spare2; the last iteration
-            // also writes positions, into the displacement buffer (free after predict).
+            // predict: displacements into spare; iterate spare <-> disp (free after predict); the
+            // last iteration also writes positions, into spare2. So the iterates keep their two
+            // buffers and the positions alternate between two: a pass's inputs are on one of two
+            // texture units from substep to substep (one u_x / u_aux update, not two).
             run_pass(*p_first, cur, disp, spare, -1, false, sub);
-            int in = spare, out = spare2;
+            int in = spare, out = disp;
             float omega = 1.0f;  // IMPLICIT: Chebyshev weights (Wang 2015 eq. 12), 1 in the first iteration
             const float rho2 = chebyshev.rho * chebyshev.rho;
             // The coarse correction comes after the first iteration (before the only one of a 1-iteration budget).
@@ -1375,18 +1383,18 @@ Result GlesCloth::gpu_step(float dt) {
                 if (it == 1) omega = 2.0f / (2.0f - rho2);
                 else if (it > 1) omega = 4.0f / (4.0f - rho2 * omega);
                 if (it + 1 == iterations_for())
-                    run_pass(prolong ? *p_coarse[5] : *p_commit, in, cur, disp, out, true, sub,
-                             {omega, chebyshev.gamma});  // x -> disp, d -> out
+                    run_pass(prolong ? *p_coarse[5] : *p_commit, in, cur, spare2, out, true, sub,
+                             {omega, chebyshev.gamma});  // x -> spare2, d -> out
                 else
                     run_pass(prolong ? *p_coarse[4] : *p_constraint, in, cur, out, -1, true, sub, {omega, chebyshev.gamma});
                 std::swap(in, out);
             }
-            // Positions went to the old displacement buffer, displacements to `in`.
+            // Positions went to spare2, displacements to `in`; `out` held the last iterate.
             const int old_cur = cur;
-            cur = disp;
+            cur = spare2;
             disp = in;
-            spare = old_cur;
-            spare2 = out;
+            spare = out;
+            spare2 = old_cur;
         }
         if (p_tether) {
             // kernels::tether after the solve: x, d -> spare, spare2 (the CPU works in place).

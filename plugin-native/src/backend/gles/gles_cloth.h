@@ -83,9 +83,10 @@ struct GlObjects {
     std::vector<GLuint> programs;
     std::vector<GLuint> vaos;  ///< per pass configuration (GlesCloth::vertex_array)
     SelfCollideGl self;        ///< self-collision's (gles_self_collide.h)
-    /// IMPLICIT's coarse levels (gles_coarse.h): table texture, vector buffer and its texture, and
-    /// the attribute-less vertex array their passes draw with.
-    GLuint coarse_table = 0, coarse_vec = 0, coarse_vec_tex = 0, coarse_vao = 0;
+    /// IMPLICIT's coarse levels (gles_coarse.h): table texture, two vector buffers (the passes
+    /// alternate, GlesCloth::coarse_pass) and their texture, and the attribute-less vertex array
+    /// their passes draw with.
+    GLuint coarse_table = 0, coarse_vec[2] = {}, coarse_vec_tex = 0, coarse_vao = 0;
     void* context = nullptr;  ///< EGLContext they were made in
     bool empty() const;
 };
@@ -296,6 +297,7 @@ private:
 
     GlObjects gl_;
     CoarseHierarchy coarse_;
+    int coarse_flip_ = 0;  // the vector buffer the next coarse pass writes
     /// What coarse_ was cooked for (h 0: nothing uploaded in this context): substep, stiffness, damping.
     float coarse_key_[5] = {};
     std::map<std::string, Program> programs_;
