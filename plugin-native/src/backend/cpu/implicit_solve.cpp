@@ -207,6 +207,7 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     block_sum_.assign((n + kBlock - 1) / kBlock, 0.0);
     coarse_.build(topo, x);
     levels_.build(topo, x);
+    levels_fresh_ = false;
 }
 
 template <class Fn>
@@ -281,7 +282,12 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
     const bool plain_step = max_iterations == 1 && h_ < c.h * (1.0f + kImplicitRefactor);
     with_blocks_ = !plain_step;  // D comes with the first residual
     with_coarse_ = false;
-    with_levels_ = false;
+    // The coarse levels as the previous solve assembled them, when it took a second iteration but not
+    // its whole budget: a cloth in mild motion (a taut sheet ringing about its rest state) has barely
+    // moved since, and its waves get their share from the first step. Not after a solve that used the
+    // whole budget (falling: the bench's falling sheet went from 0.09-0.11 of its size away from
+    // MASS_SPRING to 0.13-0.17 with them), nor at rest (one iteration, so no cost).
+    with_levels_ = with_blocks_ && levels_fresh_;
     // Preconditioned nonlinear conjugate gradients: the first direction is z = P^-1 r, then
     // Polak-Ribiere (clamped at 0, which restarts on z), each with the step length of one Newton
     // step along the direction, alpha = r.p / p.Hp (Shewchuk 1994, "An introduction to the
@@ -312,7 +318,8 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         }
         if (it == 1 && with_blocks_) {
             // Not converged in one iteration, so in motion: from here on the preconditioner adds the
-            // coarse space (coarse_space.h), assembled at this iterate; a cloth at rest never pays for it.
+            // coarse space and levels (coarse_space.h), assembled at this iterate; a cloth at rest never
+            // pays for them.
             over_items(pool, coarse_.patch_count(), [&](uint32_t p) { coarse_.assemble(c, start, iterate, p); });
             with_coarse_ = coarse_.factor();
             over_items(pool, levels_.node_count(), [&](uint32_t a) { levels_.assemble_node(c, start, iterate, a); });
@@ -347,6 +354,7 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         rz_prev = dots.rz;
         rp_prev = rp;
     }
+    levels_fresh_ = with_levels_ && it > 1 && it < max_iterations;
     return it;
 }
 

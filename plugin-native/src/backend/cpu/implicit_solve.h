@@ -1,7 +1,7 @@
 // The IMPLICIT model's solve of one substep (CpuCloth::implicit_substep): minimise Phi
 // (kernels::implicit_residual) by nonlinear preconditioned conjugate gradients on the force
-// residual r = -grad Phi. The preconditioner is additive, P^-1 = A^-1 + D^-1 (+ G Hc^-1 G^T +
-// P_1 V P_1^T from the second iteration on):
+// residual r = -grad Phi. The preconditioner is additive, P^-1 = A^-1 + D^-1 (+ G Hc^-1 G^T from
+// the second iteration on, + P_1 V P_1^T, see below):
 // - A = M/h^2 + sum_springs (k + kd/h) (e_i - e_j)(e_i - e_j)^T over the free particles (kinematic
 //   ones enter only through the residual; Projective Dynamics' constant matrix, Bouaziz et al.
 //   2014), factored once by a sparse Cholesky. It is right for the stiff smooth modes (rigid
@@ -24,7 +24,8 @@
 //   from MASS_SPRING over the size 0.035 / 0.075, was 0.43 / 0.83; 33^2: 0.13 / 0.14, was 0.87 /
 //   1.25), for ~20 % more work a step in motion.
 // - P_1 V P_1^T: the coarse levels (coarse_space.h, CoarseLevels), translations of small cells with
-//   one V-cycle on H, also from the second iteration: a taut sheet's smooth out-of-plane waves,
+//   one V-cycle on H, assembled in the second iteration, and from the first in a solve after one in
+//   mild motion (see solve; never at rest): a taut sheet's smooth out-of-plane waves,
 //   which the patches are too coarse to show, cost nearly their mass alone in H while D charges
 //   them the tension and A the stiffness; with a few iterations they kept ringing at the user's
 //   default drag (65^2 sheet: 4.6e-4 of the displacement after 5.5 s, exact implicit Euler 1.2e-6).
@@ -144,6 +145,7 @@ class ImplicitSolve {
     bool with_coarse_ = false;          ///< this solve's preconditioner adds the coarse correction
     CoarseLevels levels_;
     bool with_levels_ = false;          ///< this solve's preconditioner adds the coarse levels' correction
+    bool levels_fresh_ = false;         ///< the next solve may start with levels_ (see solve)
     std::vector<uint32_t> in_contact_;       ///< particles with a contact normal in this solve
     const glm::vec3* normal_ = nullptr;  ///< this solve's contact normals, null if none
 };
