@@ -378,7 +378,8 @@ typedef enum drape_stage {
     DRAPE_STAGE_TETHER = 3, /**< tethers (max_stretch > 0 and pinned vertices) */
     DRAPE_STAGE_SELF_COLLIDE = 4, /**< self-collision (when enabled) */
     DRAPE_STAGE_COLLIDE = 5, /**< touch drag and colliders (when there are any) */
-    DRAPE_STAGE_VERIFY = 6, /**< finite positions, runaway strain, strain statistics */
+    DRAPE_STAGE_VERIFY = 6, /**< finite positions and runaway strain (the strain statistics are computed when
+                                 read) */
     DRAPE_STAGE_FINISH = 7, /**< rollback or commit: colliders advance, sleep check, recentre */
     DRAPE_STAGE_COUNT = 8
 } drape_stage;

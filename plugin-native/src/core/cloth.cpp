@@ -244,12 +244,15 @@ void Cloth::shift_origin(const glm::vec3& shift) {
 
 void Cloth::stats_of_cpu_copy(drape_stats* out) const {
     drape_stats s = stats_;
-    // Energies from the current state (computed on demand: a step does not pay for them).
+    // Energies and strain statistics from the current state (computed on demand: a step does not
+    // pay for them; one length per spring serves both).
     const Particle* x = x_.data();
     const Particle* d = d_.data();
     const NeighbourTable& nb = topo_.nbr;
     const glm::vec3 g(params_.gravity[0], params_.gravity[1], params_.gravity[2]);
-    double kinetic = 0, potential = 0, elastic = 0;
+    double kinetic = 0, potential = 0, elastic = 0, strain_sq = 0;
+    float max_strain = 0;
+    uint32_t strained = 0;  // springs in the strain statistics: structural and shear, active
     for (uint32_t i = 0; i < topo_.particle_count; ++i) {
         const float w = x[i].w;
         if (w > 0) {
@@ -257,18 +260,29 @@ void Cloth::stats_of_cpu_copy(drape_stats* out) const {
             kinetic += 0.5 * double(glm::dot(v, v)) / w;
             potential -= glm::dot(glm::dvec3(g), origin_ + glm::dvec3(glm::vec3(x[i]))) / w;
         }
-        if (params_.model == DRAPE_MODEL_PBD) continue;
         const size_t row = size_t(i) * nb.slots;
         for (uint32_t k = 0; k < nb.count[i]; ++k) {
             const uint32_t j = nb.index[row + k];
             if (j < i) continue;
-            const double stretch = glm::length(glm::vec3(x[i]) - glm::vec3(x[j])) - nb.rest[row + k];
-            elastic += 0.5 * params_.stiffness[nb.group[row + k]] * stretch * stretch;
+            const uint8_t group = nb.group[row + k];
+            const float rest = nb.rest[row + k];
+            const float len = glm::length(glm::vec3(x[i]) - glm::vec3(x[j]));
+            if (params_.model != DRAPE_MODEL_PBD) {
+                const double stretch = len - rest;
+                elastic += 0.5 * params_.stiffness[group] * stretch * stretch;
+            }
+            if (group == DRAPE_GROUP_BEND || !(params_.stiffness[group] > 0) || !(rest > 0)) continue;
+            const float strain = len / rest - 1.0f;
+            max_strain = std::max(max_strain, std::fabs(strain));
+            strain_sq += double(strain) * strain;
+            ++strained;
         }
     }
     s.kinetic_energy = float(kinetic);
     s.potential_energy = float(potential);
     s.elastic_energy = float(elastic);
+    s.max_strain = max_strain;
+    s.rms_strain = strained ? float(std::sqrt(strain_sq / strained)) : 0.0f;
     *out = s;
 }
 

@@ -132,7 +132,7 @@ protected:
     /// Positions (caller's space, relative to layout.origin, computed in double) and normals of the
     /// CPU copy per caller vertex.
     void read_cpu_copy(const drape_vertex_layout& layout, void* dst) const;
-    /// stats_ plus the energies of the CPU copy.
+    /// stats_ plus the energies and strain statistics of the CPU copy.
     void stats_of_cpu_copy(drape_stats* out) const;
 
     void refresh_derived();  // after params or masses change

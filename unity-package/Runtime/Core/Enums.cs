@@ -109,7 +109,8 @@ namespace Drape.Core
         SelfCollide = 4,
         /// <summary>Touch drag and colliders (when there are any).</summary>
         Collide = 5,
-        /// <summary>Finite positions, runaway strain, strain statistics.</summary>
+        /// <summary>Finite positions and runaway strain (the strain statistics are computed when
+        /// read).</summary>
         Verify = 6,
         /// <summary>Rollback or commit: colliders advance, sleep check, recentre.</summary>
         Finish = 7,

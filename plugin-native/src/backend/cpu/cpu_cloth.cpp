@@ -22,6 +22,7 @@ CpuCloth::CpuCloth(World& world, drape_backend backend, std::shared_ptr<const De
     target_.resize(n);
     contact_normal_.resize(n);
     slot_coef_.assign(size_t(n) * topo_.nbr.slots, 0.0f);
+    col_limit_.resize(size_t(n) * topo_.nbr.slots);
     kinematic_start_.resize(n);
     backup_x_.resize(n);
     backup_d_.resize(n);
@@ -31,6 +32,17 @@ CpuCloth::CpuCloth(World& world, drape_backend backend, std::shared_ptr<const De
 }
 
 void CpuCloth::refresh_backend() {
+    // The runaway check's limit per slot: a spring (1 + kRunawayStrain) times its rest length, squared.
+    const NeighbourTable& nb = topo_.nbr;
+    const float stretch = (1.0f + kRunawayStrain) * (1.0f + kRunawayStrain);
+    for (uint32_t i = 0; i < topo_.particle_count; ++i)
+        for (uint32_t s = 0; s < nb.slots; ++s) {
+            const size_t slot = size_t(i) * nb.slots + s;
+            const bool checked = s < nb.count[i] && nb.group[slot] < DRAPE_GROUP_COUNT &&
+                                 params_.stiffness[nb.group[slot]] > 0 && nb.rest[slot] > 0;
+            col_limit_[size_t(s) * topo_.particle_count + i] =
+                checked ? stretch * (nb.rest[slot] * nb.rest[slot]) : INFINITY;
+        }
     // IMPLICIT: refactor now (not in step, which must not allocate) when what the matrix depends
     // on changed: effective masses (which particles are kinematic, masses), stiffness, damping.
     const uint32_t n = topo_.particle_count;
@@ -239,29 +251,14 @@ void CpuCloth::tether() {
 
 CpuCloth::VerifyPartial CpuCloth::verify() {
     ProfileScope scope(profile_, DRAPE_STAGE_VERIFY);
-    // Finite positions and no runaway strain; strain statistics on the way.
+    // Finite positions and no runaway strain (kernels::overstretched with col_limit_: no root or
+    // division per spring). The strain statistics are computed when read (Cloth::stats_of_cpu_copy).
     const uint32_t n = topo_.particle_count;
-    const NeighbourTable& nb = topo_.nbr;
     const Particle* x = x_.data();
     auto verify_range = [&](uint32_t t, uint32_t b, uint32_t e) {
-        VerifyPartial p{true, 0, 0, 0, 0};
-        for (uint32_t i = b; i < e; ++i) {
+        VerifyPartial p{true, kernels::overstretched(ctx_, col_limit_.data(), x, b, e)};
+        for (uint32_t i = b; i < e; ++i)
             if (!(std::isfinite(x[i].x) && std::isfinite(x[i].y) && std::isfinite(x[i].z))) p.finite = false;
-            const size_t row = size_t(i) * nb.slots;
-            for (uint32_t s = 0; s < nb.count[i]; ++s) {
-                const uint32_t j = nb.index[row + s];
-                const uint8_t g = nb.group[row + s];
-                if (j < i || !(params_.stiffness[g] > 0) || !(nb.rest[row + s] > 0)) continue;
-                const float strain = glm::length(glm::vec3(x[i]) - glm::vec3(x[j])) / nb.rest[row + s] - 1.0f;
-                const float a = std::fabs(strain);
-                if (!(a <= p.max_strain_all)) p.max_strain_all = a;  // also catches NaN
-                if (g != DRAPE_GROUP_BEND) {
-                    p.max_strain = std::max(p.max_strain, a);
-                    p.sum_sq += strain * strain;
-                    ++p.count;
-                }
-            }
-        }
         partials_[t] = p;
     };
     const uint32_t parts = backend_ == DRAPE_BACKEND_CPU_THREADED ? world_.pool().size() : 1;
@@ -272,13 +269,10 @@ CpuCloth::VerifyPartial CpuCloth::verify() {
             verify_range(t, uint32_t(uint64_t(n) * t / parts), uint32_t(uint64_t(n) * (t + 1) / parts));
         });
     }
-    VerifyPartial total{true, 0, 0, 0, 0};
+    VerifyPartial total{true, false};
     for (uint32_t t = 0; t < parts; ++t) {
         total.finite = total.finite && partials_[t].finite;
-        if (!(partials_[t].max_strain_all <= total.max_strain_all)) total.max_strain_all = partials_[t].max_strain_all;
-        total.max_strain = std::max(total.max_strain, partials_[t].max_strain);
-        total.sum_sq += partials_[t].sum_sq;
-        total.count += partials_[t].count;
+        total.runaway = total.runaway || partials_[t].runaway;
     }
     return total;
 }
@@ -291,9 +285,8 @@ Result CpuCloth::finish(float dt, const VerifyPartial& total) {
     stats_.iterations = params_.model == DRAPE_MODEL_MASS_SPRING ? 1
                         : params_.model == DRAPE_MODEL_IMPLICIT ? implicit_iterations_
                                                                 : iterations_;
-    const bool runaway = !(total.max_strain_all <= kRunawayStrain);
     stats_.non_finite = total.finite ? 0 : 1;
-    if (!total.finite || runaway) {
+    if (!total.finite || total.runaway) {
         std::memcpy(x_.data(), backup_x_.data(), n * sizeof(Particle));
         std::memcpy(d_.data(), backup_d_.data(), n * sizeof(Particle));
         h_prev_ = backup_h_prev_;
@@ -306,8 +299,6 @@ Result CpuCloth::finish(float dt, const VerifyPartial& total) {
                     " with " + std::to_string(substeps_) + " substeps of " + std::to_string(h_) +
                     " s); the state before the step was restored. Raise substeps or lower stiffness."};
     }
-    stats_.max_strain = total.max_strain;
-    stats_.rms_strain = total.count ? std::sqrt(total.sum_sq / float(total.count)) : 0.0f;
     interaction_end_step(dt, false);  // colliders advance, drag consumed, sleep check
     recentre();  // after the step, so a rolled-back step changes nothing
     return {};

@@ -49,13 +49,11 @@ private:
     /// substep's velocity (cpu_collide.cpp).
     uint32_t self_collision_substeps(float dt) const;
     struct VerifyPartial {
-        bool finite;
-        float max_strain_all, max_strain, sum_sq;
-        uint32_t count;
+        bool finite, runaway;
     };
-    /// Finite positions and runaway strain over all particles, with the strain statistics.
+    /// Finite positions and runaway strain over all particles.
     VerifyPartial verify();
-    /// Statistics; rolls back a failed step, or commits (interaction bookkeeping, recentre).
+    /// Statistics (the strain's when read); rolls back a failed step, or commits (interaction bookkeeping, recentre).
     Result finish(float dt, const VerifyPartial& total);
 
     void refresh_backend() override;
@@ -93,6 +91,8 @@ private:
     void factor_implicit(float h);
     float last_h_ = 0;  ///< substep of the last step, s (0: none yet)
     std::vector<float> slot_coef_;  ///< per-spring Jacobi factor of the current step (kernels.h)
+    /// Per slot, column-major: the largest squared length verify lets its spring reach (+inf: unchecked).
+    std::vector<float> col_limit_;
 
     std::vector<glm::vec3> kinematic_start_;  ///< kinematic particles' positions at the start of the step
 

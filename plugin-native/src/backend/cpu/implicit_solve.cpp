@@ -9,6 +9,8 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 #include <numeric>
+
+#include "backend/cpu/kernels_simd.h"
 #if defined(__SSE__) || defined(_M_X64)
 #include <xmmintrin.h>
 #elif defined(__ARM_NEON)
@@ -203,6 +205,12 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     sep_sum_.resize(size_t(sep_count) * kParts);
     for (std::vector<Particle>* v : {&r_, &r_prev_, &z_, &p_}) v->assign(n, Particle(0.0f));
     block_inv_.assign(n, kernels::SymMat3());
+    col_k_.assign(size_t(n) * nb.slots, 0.0f);
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t s = 0; s < nb.count[i]; ++s) {
+            const uint8_t g = nb.group[size_t(i) * nb.slots + s];
+            if (g < DRAPE_GROUP_COUNT && params.stiffness[g] > 0) col_k_[size_t(s) * n + i] = params.stiffness[g];
+        }
     in_contact_.reserve(n);
     block_sum_.assign((n + kBlock - 1) / kBlock, 0.0);
     coarse_.build(topo, x);
@@ -240,9 +248,9 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
     // loses that part's share).
     auto residual = [&](const Particle* p, bool blocks = false) {
         double rp = over_blocks(pool, [&](uint32_t b, uint32_t e) {
-            return blocks ? kernels::implicit_residual<true>(c, iterate, target, start, p, r_.data(), b, e,
-                                                             block_inv_.data())
-                          : kernels::implicit_residual(c, iterate, target, start, p, r_.data(), b, e);
+            return blocks ? kernels::implicit_residual_simd<true>(c, col_k_.data(), iterate, target, start, p, r_.data(),
+                                                                  b, e, block_inv_.data())
+                          : kernels::implicit_residual_simd(c, col_k_.data(), iterate, target, start, p, r_.data(), b, e);
         });
         for (uint32_t i : in_contact_) {
             const glm::vec3 n = normal_[i];

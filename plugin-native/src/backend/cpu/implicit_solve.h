@@ -140,6 +140,9 @@ class ImplicitSolve {
     // residual and direction.
     std::vector<Particle> r_, r_prev_, z_, p_;
     std::vector<kernels::SymMat3> block_inv_;  ///< per particle the inverse of its block of H (D)
+    /// Per slot of the neighbour table, column-major like SubstepContext::col_index, its spring's
+    /// stiffness (N/m; 0 where inactive or padding): the residual's springs in SIMD lanes.
+    std::vector<float> col_k_;
     bool with_blocks_ = true;           ///< this solve's preconditioner adds D^-1 r (not a plain 1-iteration step)
     CoarseSpace coarse_;
     bool with_coarse_ = false;          ///< this solve's preconditioner adds the coarse correction

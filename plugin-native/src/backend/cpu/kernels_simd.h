@@ -1,12 +1,14 @@
-// constraint_iteration (kernels.h) on four particles at once: SSE on x86-64, NEON on arm64.
+// constraint_iteration and implicit_residual (kernels.h) on four particles at once: SSE on x86-64,
+// NEON on arm64.
 //
 // Each lane does exactly the scalar kernel's float operations in the same order (IEEE add, mul,
 // div and sqrt are correctly rounded in every lane, and no multiply-add is contracted), so
 // results are bit-identical to kernels::constraint_iteration and the GLES mirror still matches.
 // Lanes past their particle's spring count read the padding slots, whose factor is 0, and add
 // nothing.
-// The maths of direction and xpbd_delta (shaders/substep.h) is written out again here in vector
-// form: the shared functions take one particle's vec3s, these four lanes' components.
+// The maths of direction, xpbd_delta and the implicit spring terms (shaders/substep.h) is written
+// out again here in vector form: the shared functions take one particle's vec3s, these four lanes'
+// components.
 #pragma once
 
 #include <cstdint>
@@ -142,6 +144,132 @@ inline void constraint_iteration_simd(const SubstepContext& c, const float* coef
 #else
     constraint_iteration<kXpbd, kCommit>(c, coef, disp, start, out, x_out, begin, end);
 #endif
+}
+
+/// implicit_residual on four particles at once: the springs in SIMD lanes, each lane's sums in the
+/// scalar kernel's order, then per particle its inertia, r.p and block inverse as the scalar kernel
+/// does them: the same bits. col_k: per slot (column-major) its spring's stiffness, 0 where inactive
+/// or padding; a spring a lane does not have adds exactly 0 to its sums (a sum that starts at +0
+/// never becomes -0, so adding +-0 leaves it as it is).
+template <bool kBlocks = false>
+inline double implicit_residual_simd(const SubstepContext& c, const float* col_k, const Particle* disp,
+                                     const Particle* target, const Particle* start, const Particle* p,
+                                     Particle* residual, uint32_t begin, uint32_t end, SymMat3* block_inv = nullptr) {
+    double rp = 0;
+    uint32_t i = begin;
+#if DRAPE_SIMD
+    using simd::F4;
+    using simd::I4;
+    using simd::V3;
+    const float kd_h = c.damping / c.h;
+    const float inv_h2 = 1.0f / (c.h * c.h);
+    const F4 zero = {0, 0, 0, 0}, one = {1, 1, 1, 1};
+    for (; i + 4 <= end; i += 4) {
+        const uint32_t self[4] = {i, i + 1, i + 2, i + 3};
+        const V3 di = simd::gather(disp, self);
+        const V3 si = simd::gather(start, self);
+        F4 wi, iso = zero;
+        uint32_t max_count = 0;
+        for (int l = 0; l < 4; ++l) {
+            wi[l] = disp[i + l].w;
+            if (kBlocks && wi[l] != 0.0f) iso[l] = inv_h2 / wi[l];
+            max_count = c.nbr_count[i + l] > max_count ? c.nbr_count[i + l] : max_count;
+        }
+        V3 r{zero, zero, zero}, diag{zero, zero, zero}, off{zero, zero, zero};
+        for (uint32_t s = 0; s < max_count; ++s) {
+            const size_t base = size_t(s) * c.stride + i;  // four consecutive slots (column-major)
+            uint32_t j[4];
+            F4 rest, k;
+            std::memcpy(j, c.col_index + base, sizeof j);
+            std::memcpy(&rest, c.col_rest + base, sizeof rest);
+            std::memcpy(&k, col_k + base, sizeof k);
+            const I4 on = k > zero;
+        const V3 dj = simd::gather(disp, j);
+            const V3 sj = simd::gather(start, j);
+            const V3 dij{di.x - dj.x, di.y - dj.y, di.z - dj.z};
+            const V3 d{(si.x - sj.x) + dij.x, (si.y - sj.y) + dij.y, (si.z - sj.z) + dij.z};
+            const F4 len = simd::sqrt4(d.x * d.x + d.y * d.y + d.z * d.z);
+            const F4 inv = len > zero ? one / len : zero;  // direction(): zero for a zero length
+            const V3 n{d.x * inv, d.y * inv, d.z * inv};
+            // glsl::implicit_spring_force
+            const F4 f = F4(I4(-(k * (len - rest) + kd_h * (n.x * dij.x + n.y * dij.y + n.z * dij.z))) & on);
+            r.x += f * n.x;
+            r.y += f * n.y;
+            r.z += f * n.z;
+            if (kBlocks) {
+                // glsl::implicit_tension (clamped), implicit_block_along, SymMat3::add_outer
+                const F4 t = one - rest / len;
+                const F4 across = len > zero ? k * (zero < t ? t : zero) : zero;
+                iso += across;  // 0 where k is
+                const F4 along = F4(I4(k + kd_h - across) & on);
+                const V3 a{along * n.x, along * n.y, along * n.z};
+                diag.x += a.x * n.x;
+                diag.y += a.y * n.y;
+                diag.z += a.z * n.z;
+                off.x += a.x * n.y;
+                off.y += a.x * n.z;
+                off.z += a.y * n.z;
+            }
+        }
+        for (int l = 0; l < 4; ++l) {
+            glm::vec3 rl(0.0f);
+            if (wi[l] != 0.0f) {
+                rl = glm::vec3(r.x[l], r.y[l], r.z[l]) -
+                     (glm::vec3(di.x[l], di.y[l], di.z[l]) - glm::vec3(target[i + l])) * (inv_h2 / wi[l]);
+                if (p) rp += double(glm::dot(rl, glm::vec3(p[i + l])));
+                if (kBlocks) {
+                    SymMat3 nn{glm::vec3(diag.x[l], diag.y[l], diag.z[l]), glm::vec3(off.x[l], off.y[l], off.z[l])};
+                    nn.diag += iso[l];
+                    block_inv[i + l] = nn.inverse();
+                }
+            } else if (kBlocks) {
+                block_inv[i + l] = SymMat3();
+            }
+            residual[i + l] = Particle(rl, wi[l]);
+        }
+    }
+#endif
+    // The rest one by one, each particle's r.p added in order as the scalar kernel adds it.
+    for (; i < end; ++i) rp += implicit_residual<kBlocks>(c, disp, target, start, p, residual, i, i + 1, block_inv);
+    return rp;
+}
+
+/// The CPU step's runaway check (CpuCloth::verify): true if a spring of particles [begin, end) has
+/// |x_i - x_j|^2 above col_limit (per slot, column-major; +inf where unchecked, padding included) or
+/// a NaN length. Four particles at once; each spring is seen from both ends.
+inline bool overstretched(const SubstepContext& c, const float* col_limit, const Particle* x, uint32_t begin,
+                          uint32_t end) {
+    uint32_t i = begin;
+#if DRAPE_SIMD
+    using simd::F4;
+    using simd::I4;
+    using simd::V3;
+    I4 over = {0, 0, 0, 0};
+    for (; i + 4 <= end; i += 4) {
+        const uint32_t self[4] = {i, i + 1, i + 2, i + 3};
+        const V3 xi = simd::gather(x, self);
+        uint32_t max_count = 0;
+        for (int l = 0; l < 4; ++l) max_count = c.nbr_count[i + l] > max_count ? c.nbr_count[i + l] : max_count;
+        for (uint32_t s = 0; s < max_count; ++s) {
+            const size_t base = size_t(s) * c.stride + i;
+            uint32_t j[4];
+            F4 limit;
+            std::memcpy(j, c.col_index + base, sizeof j);
+            std::memcpy(&limit, col_limit + base, sizeof limit);
+            const V3 xj = simd::gather(x, j);
+            const V3 d{xi.x - xj.x, xi.y - xj.y, xi.z - xj.z};
+            over |= ~(d.x * d.x + d.y * d.y + d.z * d.z <= limit);
+        }
+    }
+    if (over[0] | over[1] | over[2] | over[3]) return true;
+#endif
+    for (; i < end; ++i)
+        for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
+            const size_t slot = size_t(s) * c.stride + i;
+            const glm::vec3 d = glm::vec3(x[i]) - glm::vec3(x[c.col_index[slot]]);
+            if (!(glm::dot(d, d) <= col_limit[slot])) return true;
+        }
+    return false;
 }
 
 }  // namespace drape::kernels

@@ -850,29 +850,13 @@ Result GlesCloth::pull() {
 }
 
 void GlesCloth::compute_cpu_stats() {
-    // The CPU step's verify pass, on the read-back copy (the GPU step has no verify pass).
+    // The CPU step's finite check, on the read-back copy (the GPU step has no verify pass); the
+    // strain statistics come with the energies when read (Cloth::stats_of_cpu_copy).
     const Particle* x = x_.data();
-    const NeighbourTable& nb = topo_.nbr;
     bool finite = true;
-    float max_strain = 0;
-    double sum_sq = 0;
-    uint32_t count = 0;
-    for (uint32_t i = 0; i < topo_.particle_count; ++i) {
+    for (uint32_t i = 0; i < topo_.particle_count; ++i)
         if (!(std::isfinite(x[i].x) && std::isfinite(x[i].y) && std::isfinite(x[i].z))) finite = false;
-        const size_t row = size_t(i) * nb.slots;
-        for (uint32_t s = 0; s < nb.count[i]; ++s) {
-            const uint32_t j = nb.index[row + s];
-            const uint8_t g = nb.group[row + s];
-            if (j < i || !(params_.stiffness[g] > 0) || !(nb.rest[row + s] > 0) || g == DRAPE_GROUP_BEND) continue;
-            const float strain = glm::length(glm::vec3(x[i]) - glm::vec3(x[j])) / nb.rest[row + s] - 1.0f;
-            max_strain = std::max(max_strain, std::fabs(strain));
-            sum_sq += double(strain) * strain;
-            ++count;
-        }
-    }
     stats_.non_finite = finite ? 0 : 1;
-    stats_.max_strain = max_strain;
-    stats_.rms_strain = count ? float(std::sqrt(sum_sq / count)) : 0.0f;
 }
 
 bool GlesCloth::predict_has_dashpot() const { return params_.model == DRAPE_MODEL_PBD && params_.damping > 0; }
