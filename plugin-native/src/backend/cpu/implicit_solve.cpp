@@ -9,10 +9,11 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 #include <numeric>
+#include <type_traits>
 
 #include "backend/cpu/kernels_simd.h"
-#if defined(__SSE__) || defined(_M_X64)
-#include <xmmintrin.h>
+#if defined(__SSE2__) || defined(_M_X64)
+#include <emmintrin.h>
 #elif defined(__ARM_NEON)
 #include <arm_neon.h>
 #endif
@@ -36,38 +37,100 @@ using Lanes = ImplicitSolve::Lanes;
 
 Lanes lanes(const glm::vec4& r) { return {{r.x, r.y, r.z, 0.0f}}; }
 glm::vec3 vec3(const Lanes& a) { return glm::vec3(a.v[0], a.v[1], a.v[2]); }
-void scale(Lanes& a, float c) {
-    for (float& x : a.v) x *= c;
+
+// Four lanes in one SIMD register where there is one (SSE or NEON intrinsics; a plain array
+// elsewhere). A SIMD multiply or add rounds each lane as a scalar one does, so the lanes hold the
+// bits the scalar code would. GCC 12 kept plain four-lane loops scalar or vectorised them across
+// entries, hence the intrinsics.
+#if defined(__SSE2__) || defined(_M_X64)
+using Reg = __m128;
+Reg load(const Lanes& a) { return _mm_loadu_ps(a.v); }
+void store(Lanes& a, Reg r) { _mm_storeu_ps(a.v, r); }
+Reg mul(Reg a, Reg b) { return _mm_mul_ps(a, b); }
+Reg add(Reg a, Reg b) { return _mm_add_ps(a, b); }
+Reg sub(Reg a, Reg b) { return _mm_sub_ps(a, b); }
+Reg splat(float x) { return _mm_set1_ps(x); }
+template <int K>
+Reg lane(Reg v) {  // lane K in all four (pshufd: no copy of v first, as shufps needs)
+    return _mm_castsi128_ps(_mm_shuffle_epi32(_mm_castps_si128(v), _MM_SHUFFLE(K, K, K, K)));
 }
-/// acc plus (kAdd) or minus the products value[k] y[index[k]] for k in [begin, end), one after the
-/// other, the four lanes in one SIMD register where there is one: the same bits as lane by lane (a
-/// SIMD multiply or add rounds each lane as a scalar one does) in about 10 instructions an entry
-/// where GCC 12 made 16-21 of the plain loop (scalar, or four entries at once with the sums' lanes
-/// subtracted one by one).
-template <bool kAdd>
-Lanes gather(Lanes acc, const Lanes* y, const uint32_t* index, const float* value, uint32_t begin, uint32_t end) {
-#if defined(__SSE__) || defined(_M_X64)
-    __m128 a = _mm_loadu_ps(acc.v);
-    for (uint32_t k = begin; k < end; ++k) {
-        const __m128 t = _mm_mul_ps(_mm_set1_ps(value[k]), _mm_loadu_ps(y[index[k]].v));
-        a = kAdd ? _mm_add_ps(a, t) : _mm_sub_ps(a, t);
-    }
-    _mm_storeu_ps(acc.v, a);
 #elif defined(__ARM_NEON)
-    float32x4_t a = vld1q_f32(acc.v);
-    for (uint32_t k = begin; k < end; ++k) {
-        const float32x4_t t = vmulq_n_f32(vld1q_f32(y[index[k]].v), value[k]);
-        a = kAdd ? vaddq_f32(a, t) : vsubq_f32(a, t);
-    }
-    vst1q_f32(acc.v, a);
+using Reg = float32x4_t;
+Reg load(const Lanes& a) { return vld1q_f32(a.v); }
+void store(Lanes& a, Reg r) { vst1q_f32(a.v, r); }
+Reg mul(Reg a, Reg b) { return vmulq_f32(a, b); }
+Reg add(Reg a, Reg b) { return vaddq_f32(a, b); }
+Reg sub(Reg a, Reg b) { return vsubq_f32(a, b); }
+Reg splat(float x) { return vdupq_n_f32(x); }
+template <int K>
+Reg lane(Reg v) {
+    return vdupq_laneq_f32(v, K);
+}
 #else
-    for (uint32_t k = begin; k < end; ++k)
-        for (int l = 0; l < 4; ++l) {
-            const float t = value[k] * y[index[k]].v[l];
-            acc.v[l] = kAdd ? acc.v[l] + t : acc.v[l] - t;
-        }
+using Reg = Lanes;
+Reg load(const Lanes& a) { return a; }
+void store(Lanes& a, Reg r) { a = r; }
+template <class Op>
+Reg lanewise(Reg a, Reg b, Op op) {
+    for (int l = 0; l < 4; ++l) a.v[l] = op(a.v[l], b.v[l]);
+    return a;
+}
+Reg mul(Reg a, Reg b) { return lanewise(a, b, [](float x, float y) { return x * y; }); }
+Reg add(Reg a, Reg b) { return lanewise(a, b, [](float x, float y) { return x + y; }); }
+Reg sub(Reg a, Reg b) { return lanewise(a, b, [](float x, float y) { return x - y; }); }
+Reg splat(float x) { return {{x, x, x, x}}; }
+template <int K>
+Reg lane(Reg v) {
+    return splat(v.v[K]);
+}
 #endif
-    return acc;
+
+/// a minus (plus: kAdd) lane k of v times y[k] for k < W, k ascending, each product and sum rounded.
+template <int W, bool kAdd = false>
+Reg update(Reg a, Reg v, const Reg* y) {
+    a = kAdd ? add(a, mul(lane<0>(v), y[0])) : sub(a, mul(lane<0>(v), y[0]));
+    if constexpr (W > 1) a = kAdd ? add(a, mul(lane<1>(v), y[1])) : sub(a, mul(lane<1>(v), y[1]));
+    if constexpr (W > 2) a = kAdd ? add(a, mul(lane<2>(v), y[2])) : sub(a, mul(lane<2>(v), y[2]));
+    if constexpr (W > 3) a = kAdd ? add(a, mul(lane<3>(v), y[3])) : sub(a, mul(lane<3>(v), y[3]));
+    return a;
+}
+
+/// Forward substitution's share of a group's W columns (values y) in its shared rows [b, e):
+/// t[(row - base) * stride] minus (plus: kAdd) value times y, column by column in ascending
+/// order, as gathering along each row subtracted them.
+template <int W, bool kAdd>
+void scatter(Lanes* t, uint32_t base, uint32_t stride, const Reg* y, const uint32_t* rows, const Lanes* value,
+             uint32_t b, uint32_t e) {
+    for (uint32_t k = b; k < e; ++k) {
+        Lanes& ti = t[size_t(rows[k] - base) * stride];
+        store(ti, update<W, kAdd>(load(ti), load(value[k]), y));
+    }
+}
+
+/// Back substitution's share of a group's shared rows [b, e), last first, in the W columns' sums
+/// acc: acc[k] minus lane k of the row's values times its y.
+template <int W>
+void gather(Reg* acc, const Lanes* y, const uint32_t* rows, const Lanes* value, uint32_t b, uint32_t e) {
+    for (uint32_t k = e; k-- > b;) {
+        const Reg yi = load(y[rows[k]]);
+        const Reg v = load(value[k]);
+        acc[0] = sub(acc[0], mul(lane<0>(v), yi));
+        if constexpr (W > 1) acc[1] = sub(acc[1], mul(lane<1>(v), yi));
+        if constexpr (W > 2) acc[2] = sub(acc[2], mul(lane<2>(v), yi));
+        if constexpr (W > 3) acc[3] = sub(acc[3], mul(lane<3>(v), yi));
+    }
+}
+
+/// fn(std::integral_constant<int, W>) for W = width (1 to ImplicitSolve::kGroupWidth).
+template <class Fn>
+void with_width(uint32_t width, Fn&& fn) {
+    static_assert(ImplicitSolve::kGroupWidth == 4, "one case per width");
+    switch (width) {
+        case 1: fn(std::integral_constant<int, 1>()); break;
+        case 2: fn(std::integral_constant<int, 2>()); break;
+        case 3: fn(std::integral_constant<int, 3>()); break;
+        default: fn(std::integral_constant<int, 4>()); break;
+    }
 }
 
 }  // namespace
@@ -162,45 +225,53 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     a.setFromTriplets(entries.begin(), entries.end());
     Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>> llt(a);
     const SparseMatrix& l = llt.matrixL().nestedExpression();  // by columns, the diagonal first
-    std::vector<uint32_t> row_count(m + 1, 0);
-    for (int j = 0; j < m; ++j)
-        for (int k = l.outerIndexPtr()[j] + 1; k < l.outerIndexPtr()[j + 1]; ++k)
-            ++row_count[l.innerIndexPtr()[k] + 1];
-    row_start_.resize(m + 1);
-    std::partial_sum(row_count.begin(), row_count.end(), row_start_.begin());
-    std::vector<uint32_t> fill(row_start_.begin(), row_start_.end() - 1);
-    row_col_.resize(row_start_[m]);
-    row_value_.resize(row_start_[m]);
+    // L by groups (supernodes of at most kGroupWidth columns, none across a part's end): column j
+    // joins column j - 1's group when column j - 1's rows are j and then column j's.
+    const int* outer = l.outerIndexPtr();
+    const int* inner = l.innerIndexPtr();
+    const double* value = l.valuePtr();
+    auto joins = [&](int j) {  // column j may join column j - 1's group
+        const int below = outer[j] - outer[j - 1] - 1;  // column j - 1's rows below its diagonal
+        return below == outer[j + 1] - outer[j] && below > 0 && inner[outer[j - 1] + 1] == j &&
+               std::equal(inner + outer[j - 1] + 2, inner + outer[j], inner + outer[j] + 1);
+    };
     inv_diag_.resize(m);
-    col_start_.assign(m + 1, 0);
-    col_row_.resize(row_start_[m]);
-    col_value_.resize(row_start_[m]);
-    for (int j = 0; j < m; ++j) {
-        inv_diag_[j] = float(1.0 / l.valuePtr()[l.outerIndexPtr()[j]]);
-        col_start_[j + 1] = col_start_[j] + uint32_t(l.outerIndexPtr()[j + 1] - l.outerIndexPtr()[j] - 1);
-        uint32_t c = col_start_[j + 1];  // filled from the end: the column's rows last first
-        for (int k = l.outerIndexPtr()[j] + 1; k < l.outerIndexPtr()[j + 1]; ++k) {
-            assert(k == l.outerIndexPtr()[j] + 1 || l.innerIndexPtr()[k] > l.innerIndexPtr()[k - 1]);
-            const uint32_t e = fill[l.innerIndexPtr()[k]]++;
-            row_col_[e] = uint32_t(j);
-            row_value_[e] = float(l.valuePtr()[k]);
-            col_row_[--c] = uint32_t(l.innerIndexPtr()[k]);
-            col_value_[c] = row_value_[e];
+    for (int j = 0; j < m; ++j) inv_diag_[j] = float(1.0 / value[outer[j]]);
+    group_.clear();
+    group_row_.clear();
+    group_value_.clear();
+    group_tri_.clear();
+    const uint32_t sep = begin_[kParts];
+    for (int p = 0; p <= kParts; ++p) {
+        part_group_[p] = uint32_t(group_.size());
+        for (uint32_t j = begin_[p]; j < begin_[p + 1];) {
+            Group g{j, 1, uint32_t(group_row_.size()), 0, 0};
+            while (g.width < kGroupWidth && j + g.width < begin_[p + 1] && joins(int(j + g.width))) ++g.width;
+            const int last = int(j + g.width - 1);
+            for (uint32_t k = 0; k < kGroupWidth; ++k) {  // the run's own triangle: L[j + k][j + kk], kk < k
+                Lanes t{};
+                for (uint32_t kk = 0; kk < k && k < g.width; ++kk) t.v[kk] = float(value[outer[j + kk] + 1 + (k - kk - 1)]);
+                group_tri_.push_back(t);
+            }
+            for (int e = outer[last] + 1; e < outer[last + 1]; ++e) {
+                const uint32_t r = uint32_t(inner[e]);
+                assert(p == kParts || r >= sep || (r >= begin_[p] && r < begin_[p + 1]));  // the dissection holds
+                Lanes v{};
+                for (uint32_t k = 0; k < g.width; ++k)
+                    v.v[k] = float(value[outer[j + k] + 1 + (g.width - 1 - k) + (e - outer[last] - 1)]);
+                group_row_.push_back(r);
+                group_value_.push_back(v);
+                if (r < sep || p == kParts) g.part_end = uint32_t(group_row_.size());
+            }
+            g.end = uint32_t(group_row_.size());
+            if (g.part_end < g.rows) g.part_end = g.rows;
+            group_.push_back(g);
+            j += g.width;
         }
     }
+    part_group_[kParts + 1] = uint32_t(group_.size());
     h_ = h;
-    // The dissection holds: a part's rows only reach its own columns.
-    for (int p = 0; p < kParts; ++p)
-        for (uint32_t r = begin_[p]; r < begin_[p + 1]; ++r)
-            assert(row_start_[r] == row_start_[r + 1] || row_col_[row_start_[r]] >= begin_[p]);
-    const uint32_t sep = begin_[kParts], sep_count = uint32_t(m) - sep;
-    sep_split_.resize(size_t(sep_count) * kParts);
-    for (uint32_t s = 0; s < sep_count; ++s)
-        for (int p = 0; p < kParts; ++p)
-            sep_split_[size_t(s) * kParts + p] =
-                uint32_t(std::lower_bound(row_col_.begin() + row_start_[sep + s],
-                                          row_col_.begin() + row_start_[sep + s + 1], begin_[p + 1]) -
-                         row_col_.begin());
+    const uint32_t sep_count = uint32_t(m) - sep;
     y_.resize(m);
     sep_sum_.resize(size_t(sep_count) * kParts);
     for (std::vector<Particle>* v : {&r_, &r_prev_, &z_, &p_}) v->assign(n, Particle(0.0f));
@@ -402,7 +473,7 @@ ImplicitSolve::Dots ImplicitSolve::precondition(const Particle* r, const Particl
     if (with_levels_) levels_.apply(r);
     each_part([&](int p) { forward_part(p, r); });
     separator(r, r_prev, z);
-    each_part([&](int p) { part_dots_[p] = back_substitute(begin_[p], begin_[p + 1], r, r_prev, z); });
+    each_part([&](int p) { part_dots_[p] = back_substitute(part_group_[p], part_group_[p + 1], r, r_prev, z); });
     Dots sum;
     for (const Dots& d : part_dots_) {
         sum.rz += d.rz;
@@ -411,20 +482,32 @@ ImplicitSolve::Dots ImplicitSolve::precondition(const Particle* r, const Particl
     return sum;
 }
 
+void ImplicitSolve::forward_group(uint32_t g, Lanes* t, uint32_t base, uint32_t stride) {
+    // The group's own rows (the earlier columns' shares are in y_ already), then its columns' shares
+    // of its shared rows: the part's (or the separator's) in y_, a part's separator rows in t.
+    const Group& gr = group_[g];
+    const Lanes* tri = &group_tri_[size_t(g) * kGroupWidth];
+    Reg y[kGroupWidth];
+    for (uint32_t k = 0; k < gr.width; ++k) {
+        Reg v = load(y_[gr.first + k]);
+        for (uint32_t kk = 0; kk < k; ++kk) v = sub(v, mul(splat(tri[k].v[kk]), y[kk]));
+        y[k] = mul(v, splat(inv_diag_[gr.first + k]));
+        store(y_[gr.first + k], y[k]);
+    }
+    with_width(gr.width, [&](auto w) {
+        constexpr int W = decltype(w)::value;
+        scatter<W, false>(y_.data(), 0, 1, y, group_row_.data(), group_value_.data(), gr.rows, gr.part_end);
+        scatter<W, true>(t, base, stride, y, group_row_.data(), group_value_.data(), gr.part_end, gr.end);
+    });
+}
+
 void ImplicitSolve::forward_part(int p, const Particle* r) {
-    // L y = r over the part's rows, then the part's share of each separator row's sum.
-    for (uint32_t row = begin_[p]; row < begin_[p + 1]; ++row) {
-        Lanes v = lanes(r[particle_[row]]);
-        v = gather<false>(v, y_.data(), row_col_.data(), row_value_.data(), row_start_[row], row_start_[row + 1]);
-        scale(v, inv_diag_[row]);
-        y_[row] = v;
-    }
+    // L y = r over the part's rows, and the part's share of each separator row's sum, group by group
+    // (the same subtractions in the same order as gathering along each row).
+    for (uint32_t row = begin_[p]; row < begin_[p + 1]; ++row) y_[row] = lanes(r[particle_[row]]);
     const uint32_t sep = begin_[kParts], sep_count = begin_[kParts + 1] - sep;
-    for (uint32_t s = 0; s < sep_count; ++s) {
-        const uint32_t b = p == 0 ? row_start_[sep + s] : sep_split_[size_t(s) * kParts + p - 1];
-        const uint32_t e = sep_split_[size_t(s) * kParts + p];
-        sep_sum_[size_t(s) * kParts + p] = gather<true>(Lanes{}, y_.data(), row_col_.data(), row_value_.data(), b, e);
-    }
+    for (uint32_t s = 0; s < sep_count; ++s) sep_sum_[size_t(s) * kParts + p] = Lanes{};
+    for (uint32_t g = part_group_[p]; g < part_group_[p + 1]; ++g) forward_group(g, sep_sum_.data() + p, sep, kParts);
 }
 
 void ImplicitSolve::separator(const Particle* r, const Particle* r_prev, Particle* z) {
@@ -435,33 +518,44 @@ void ImplicitSolve::separator(const Particle* r, const Particle* r_prev, Particl
         Lanes v = lanes(r[particle_[row]]);
         for (int p = 0; p < kParts; ++p)
             for (int l = 0; l < 4; ++l) v.v[l] -= sep_sum_[s + p].v[l];
-        v = gather<false>(v, y_.data(), row_col_.data(), row_value_.data(), sep_split_[s + kParts - 1], row_start_[row + 1]);
-        scale(v, inv_diag_[row]);
         y_[row] = v;
     }
-    part_dots_[kParts] = back_substitute(sep, m, r, r_prev, z);
+    for (uint32_t g = part_group_[kParts]; g < part_group_[kParts + 1]; ++g) forward_group(g, nullptr, 0, 0);
+    part_dots_[kParts] = back_substitute(part_group_[kParts], part_group_[kParts + 1], r, r_prev, z);
 }
 
 ImplicitSolve::Dots ImplicitSolve::back_substitute(uint32_t first, uint32_t last, const Particle* r,
                                                    const Particle* r_prev, Particle* z) {
-    // L^T y' = y over rows [first, last), last row first, by columns of L: a row's y' is its y less
-    // the shares of the later rows its column reaches (its own part's and the separator's, so the
-    // separator runs before the parts). z takes y' at each row's particle, with its dot products on
-    // the way.
+    // L^T y' = y over groups [first, last), last first: a column's y' is its y less the shares of the
+    // later rows it reaches (its own part's and the separator's, so the separator runs before the
+    // parts), in the order in which scattering along the rows subtracted them: the shared rows last
+    // first, then the group's own. z takes y' at each row's particle, with its dot products on the
+    // way, rows last first.
     Dots dots;
-    for (uint32_t row = last; row-- > first;) {
-        Lanes y = gather<false>(y_[row], y_.data(), col_row_.data(), col_value_.data(), col_start_[row], col_start_[row + 1]);
-        scale(y, inv_diag_[row]);
-        y_[row] = y;
-        const glm::vec3 v = vec3(y);
-        const uint32_t i = particle_[row];
-        glm::vec3 zi = with_blocks_ ? v + block_inv_[i] * glm::vec3(r[i]) : v;  // A^-1 r (+ D^-1 r)
-        if (with_coarse_) zi += coarse_.at(i);
-        if (with_levels_) zi += levels_.at(i);
-        if (normal_) zi -= std::min(0.0f, glm::dot(zi, normal_[i])) * normal_[i];  // no step inwards at a contact
-        z[i] = Particle(zi, 0.0f);
-        dots.rz += double(glm::dot(zi, glm::vec3(r[i])));
-        dots.z_r_prev += double(glm::dot(zi, glm::vec3(r_prev[i])));
+    for (uint32_t g = last; g-- > first;) {
+        const Group& gr = group_[g];
+        const Lanes* tri = &group_tri_[size_t(g) * kGroupWidth];
+        Reg acc[kGroupWidth];
+        for (uint32_t k = 0; k < gr.width; ++k) acc[k] = load(y_[gr.first + k]);
+        with_width(gr.width, [&](auto w) {
+            gather<decltype(w)::value>(acc, y_.data(), group_row_.data(), group_value_.data(), gr.rows, gr.end);
+        });
+        for (uint32_t k = gr.width; k-- > 0;) {
+            for (uint32_t kk = gr.width; --kk > k;) acc[k] = sub(acc[k], mul(splat(tri[kk].v[k]), acc[kk]));
+            acc[k] = mul(acc[k], splat(inv_diag_[gr.first + k]));  // y' of the column
+            Lanes y;
+            store(y, acc[k]);
+            y_[gr.first + k] = y;
+            const glm::vec3 v = vec3(y);
+            const uint32_t i = particle_[gr.first + k];
+            glm::vec3 zi = with_blocks_ ? v + block_inv_[i] * glm::vec3(r[i]) : v;  // A^-1 r (+ D^-1 r)
+            if (with_coarse_) zi += coarse_.at(i);
+            if (with_levels_) zi += levels_.at(i);
+            if (normal_) zi -= std::min(0.0f, glm::dot(zi, normal_[i])) * normal_[i];  // no step inwards at a contact
+            z[i] = Particle(zi, 0.0f);
+            dots.rz += double(glm::dot(zi, glm::vec3(r[i])));
+            dots.z_r_prev += double(glm::dot(zi, glm::vec3(r_prev[i])));
+        }
     }
     return dots;
 }

@@ -58,8 +58,11 @@ namespace drape {
 class ImplicitSolve {
   public:
     using Particle = kernels::Particle;
+    /// Columns of L the substitutions take at once at most (a group: one SIMD register of values
+    /// per shared row).
+    static constexpr uint32_t kGroupWidth = 4;
     /// x, y, z and a lane kept 0: the substitutions take an entry's three axes in one SIMD multiply
-    /// and subtract (implicit_solve.cpp, gather).
+    /// and subtract (implicit_solve.cpp, scatter and gather).
     struct Lanes {
         float v[4];
     };
@@ -112,7 +115,10 @@ class ImplicitSolve {
     Dots precondition(const Particle* r, const Particle* r_prev, Particle* z, ThreadPool* pool);
     // The substitutions with L's values (one per entry: A's three axes are equal).
     void forward_part(int p, const Particle* r);
+    /// Forward substitution of group g; a part's shares of separator rows go to t[(row - base) * stride].
+    void forward_group(uint32_t g, Lanes* t, uint32_t base, uint32_t stride);
     void separator(const Particle* r, const Particle* r_prev, Particle* z);
+    /// Back substitution over groups [first, last).
     Dots back_substitute(uint32_t first, uint32_t last, const Particle* r, const Particle* r_prev, Particle* z);
 
     float h_ = 0;
@@ -120,18 +126,24 @@ class ImplicitSolve {
     uint32_t begin_[kParts + 2] = {};  ///< factor rows of part p: [begin_[p], begin_[p + 1]); separator last
     std::vector<uint32_t> particle_;   ///< particle of each factor row
     std::vector<float> inv_diag_;      ///< 1 / L_jj
-    // Strictly lower part of L by rows: the forward substitution gathers along a row (a part's rows
-    // reach only its own columns, so parts run at once).
-    std::vector<uint32_t> row_start_, row_col_;
-    std::vector<float> row_value_;
-    // And by columns, each column's rows last first: the back substitution gathers down a column
-    // (its own part's rows and the separator's, final before the parts start), in the order in which
-    // scattering along the rows subtracted them, so the same bits at half the instructions (a
-    // scatter loads and stores all three axes of y per entry; a gather keeps its sum in registers).
-    std::vector<uint32_t> col_start_, col_row_;
-    std::vector<float> col_value_;
-    /// Per separator row, where its entries in each part's columns end (they are sorted by column).
-    std::vector<uint32_t> sep_split_;
+    // The strictly lower part of L by groups: runs of consecutive columns of one part (or the
+    // separator) whose rows below the run are the same (supernodes, at most kGroupWidth columns).
+    // Column first + k of a group has the rows first + k + 1 .. first + width - 1 (the group's own
+    // triangle) and then its shared rows. A part's rows reach only its own columns, so parts run at
+    // once. Both substitutions go through a shared row once per group: the forward one subtracts the
+    // group's columns from it in turn (the same operations, in the same order, as gathering along
+    // the row: the same bits), the back one subtracts it from each column's sum (its own register).
+    struct Group {
+        uint32_t first, width;  ///< its columns: [first, first + width)
+        uint32_t rows, end;     ///< its shared rows: group_row_[rows, end), ascending
+        uint32_t part_end;      ///< those in its own part (or the separator) end here; a part's
+                                ///< separator rows follow
+    };
+    std::vector<Group> group_;
+    uint32_t part_group_[kParts + 2] = {};  ///< groups of part p: [part_group_[p], part_group_[p + 1]); separator last
+    std::vector<uint32_t> group_row_;
+    std::vector<Lanes> group_value_;  ///< per shared row: lane k holds L at it and the group's column first + k
+    std::vector<Lanes> group_tri_;    ///< kGroupWidth per group: record k, lane kk < k: L[first + k][first + kk]
     std::vector<Lanes> y_;            ///< scratch, one per factor row
     std::vector<Lanes> sep_sum_;      ///< per part and separator row: sum of L_sk y_k over the part's k
     Dots part_dots_[kParts + 1];      ///< the parts' and the separator's share of the dot products
