@@ -127,8 +127,10 @@ void CpuCloth::begin(float dt) {
     h_ = dt / float(substeps_);
     iterations_ = iterations_for();
     implicit_iterations_ = 0;
-    std::memcpy(backup_x_.data(), x_.data(), n * sizeof(Particle));
-    std::memcpy(backup_d_.data(), d_.data(), n * sizeof(Particle));
+    for_particles([&](uint32_t b, uint32_t e) {  // on the pool (on the caller alone: ~2 % of a 65^2 1x1 step)
+        std::copy(x_.begin() + b, x_.begin() + e, backup_x_.begin() + b);
+        std::copy(d_.begin() + b, d_.begin() + e, backup_d_.begin() + b);
+    });
     backup_h_prev_ = h_prev_;
     backup_fresh_ = fresh_;
     for (uint32_t k : kinematic_) kinematic_start_[k] = glm::vec3(x_[k]);
