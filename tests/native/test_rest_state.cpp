@@ -92,6 +92,18 @@ TEST(RestState, DefaultRestsOnTautSheetsWithoutCreeping) {
     }
 }
 
+/// Steps frames [0, last) at 60 Hz and keeps in `worst` the largest vertex and lowest-point errors
+/// after the frames [first, last) (void: ASSERT_DRAPE_OK returns from it on a failed step).
+void worst_over_frames(const RestSetup& setup, const std::vector<double>& ref, int first, int last, RestError& worst) {
+    for (int f = 0; f < last; ++f) {
+        ASSERT_DRAPE_OK(drape_cloth_step(setup.cloth, 1.0f / 60));
+        if (f < first) continue;
+        const RestError e = rest_error(positions(setup.cloth), ref, setup.rest);
+        worst.vertex = std::max(worst.vertex, e.vertex);
+        worst.lowest = std::max(worst.lowest, e.lowest);
+    }
+}
+
 // A taut sheet stops swinging as fast as its damping says. Air drag (3/s here) takes e^-1.5 of a
 // motion's amplitude per second, and implicit Euler damps more. The drag used to reach a motion only
 // through the solve, and the smooth out-of-plane waves along a fine sheet's free edges are nearly
@@ -104,14 +116,8 @@ TEST(RestState, DefaultTautSheetStopsSwinging) {
     const RestScene s{Scene::Sheet, 65, 1};
     RestSetup setup = make_scene(s, DRAPE_MODEL_AUTO, DRAPE_BACKEND_CPU);
     const std::vector<double> ref = newton_reference(setup);
-    for (int f = 0; f < 180; ++f) ASSERT_DRAPE_OK(drape_cloth_step(setup.cloth, 1.0f / 60));
     RestError worst{0, 0, 0};
-    for (int f = 180; f < 240; ++f) {
-        ASSERT_DRAPE_OK(drape_cloth_step(setup.cloth, 1.0f / 60));
-        const RestError e = rest_error(positions(setup.cloth), ref, setup.rest);
-        worst.vertex = std::max(worst.vertex, e.vertex);
-        worst.lowest = std::max(worst.lowest, e.lowest);
-    }
+    worst_over_frames(setup, ref, 180, 240, worst);
     std::printf("[ measured ] default sheet 65^2, 3-4 s: worst vertex error %.2e, lowest point %.2e\n", worst.vertex,
                 worst.lowest);
     EXPECT_LT(worst.vertex, 2e-4);
@@ -135,14 +141,8 @@ TEST(RestState, DefaultTautSheetSettlesAtUserDrag) {
     p.air_drag = user_drag;
     ASSERT_DRAPE_OK(drape_cloth_set_params(setup.cloth, &p));
     const std::vector<double> ref = newton_reference(setup);
-    for (int f = 0; f < 270; ++f) ASSERT_DRAPE_OK(drape_cloth_step(setup.cloth, 1.0f / 60));
     RestError worst{0, 0, 0};
-    for (int f = 270; f < 300; ++f) {
-        ASSERT_DRAPE_OK(drape_cloth_step(setup.cloth, 1.0f / 60));
-        const RestError e = rest_error(positions(setup.cloth), ref, setup.rest);
-        worst.vertex = std::max(worst.vertex, e.vertex);
-        worst.lowest = std::max(worst.lowest, e.lowest);
-    }
+    worst_over_frames(setup, ref, 270, 300, worst);
     std::printf("[ measured ] default sheet 65^2, air drag %g, 4.5-5 s: worst vertex error %.2e, lowest point %.2e\n",
                 user_drag, worst.vertex, worst.lowest);
     EXPECT_LT(worst.vertex, 3e-4);
