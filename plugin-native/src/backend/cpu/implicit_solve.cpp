@@ -96,13 +96,12 @@ Reg update(Reg a, Reg v, const Reg* y) {
 }
 
 /// Forward substitution's share of a group's W columns (values y) in its shared rows [b, e):
-/// t[(row - base) * stride] minus (plus: kAdd) value times y, column by column in ascending
-/// order, as gathering along each row subtracted them.
+/// t[row - base] minus (plus: kAdd) value times y, column by column in ascending order, as
+/// gathering along each row subtracted them.
 template <int W, bool kAdd>
-void scatter(Lanes* t, uint32_t base, uint32_t stride, const Reg* y, const uint32_t* rows, const Lanes* value,
-             uint32_t b, uint32_t e) {
+void scatter(Lanes* t, uint32_t base, const Reg* y, const uint32_t* rows, const Lanes* value, uint32_t b, uint32_t e) {
     for (uint32_t k = b; k < e; ++k) {
-        Lanes& ti = t[size_t(rows[k] - base) * stride];
+        Lanes& ti = t[rows[k] - base];
         store(ti, update<W, kAdd>(load(ti), load(value[k]), y));
     }
 }
@@ -273,7 +272,10 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     h_ = h;
     const uint32_t sep_count = uint32_t(m) - sep;
     y_.resize(m);
-    sep_sum_.resize(size_t(sep_count) * kParts);
+    // Each part's sums in its own cache lines (64 bytes, 4 records; a line apart): the parts scatter
+    // into them at once, and two cores writing one line pass it back and forth (false sharing).
+    sep_stride_ = (sep_count + 3) / 4 * 4 + 4;
+    sep_sum_.resize(size_t(sep_stride_) * kParts);
     for (std::vector<Particle>* v : {&r_, &r_prev_, &z_, &p_}) v->assign(n, Particle(0.0f));
     block_inv_.assign(n, kernels::SymMat3());
     col_k_.assign(size_t(n) * nb.slots, 0.0f);
@@ -482,7 +484,7 @@ ImplicitSolve::Dots ImplicitSolve::precondition(const Particle* r, const Particl
     return sum;
 }
 
-void ImplicitSolve::forward_group(uint32_t g, Lanes* t, uint32_t base, uint32_t stride) {
+void ImplicitSolve::forward_group(uint32_t g, Lanes* t, uint32_t base) {
     // The group's own rows (the earlier columns' shares are in y_ already), then its columns' shares
     // of its shared rows: the part's (or the separator's) in y_, a part's separator rows in t.
     const Group& gr = group_[g];
@@ -496,8 +498,8 @@ void ImplicitSolve::forward_group(uint32_t g, Lanes* t, uint32_t base, uint32_t 
     }
     with_width(gr.width, [&](auto w) {
         constexpr int W = decltype(w)::value;
-        scatter<W, false>(y_.data(), 0, 1, y, group_row_.data(), group_value_.data(), gr.rows, gr.part_end);
-        scatter<W, true>(t, base, stride, y, group_row_.data(), group_value_.data(), gr.part_end, gr.end);
+        scatter<W, false>(y_.data(), 0, y, group_row_.data(), group_value_.data(), gr.rows, gr.part_end);
+        scatter<W, true>(t, base, y, group_row_.data(), group_value_.data(), gr.part_end, gr.end);
     });
 }
 
@@ -506,21 +508,21 @@ void ImplicitSolve::forward_part(int p, const Particle* r) {
     // (the same subtractions in the same order as gathering along each row).
     for (uint32_t row = begin_[p]; row < begin_[p + 1]; ++row) y_[row] = lanes(r[particle_[row]]);
     const uint32_t sep = begin_[kParts], sep_count = begin_[kParts + 1] - sep;
-    for (uint32_t s = 0; s < sep_count; ++s) sep_sum_[size_t(s) * kParts + p] = Lanes{};
-    for (uint32_t g = part_group_[p]; g < part_group_[p + 1]; ++g) forward_group(g, sep_sum_.data() + p, sep, kParts);
+    Lanes* sum = &sep_sum_[size_t(p) * sep_stride_];
+    std::fill(sum, sum + sep_count, Lanes{});
+    for (uint32_t g = part_group_[p]; g < part_group_[p + 1]; ++g) forward_group(g, sum, sep);
 }
 
 void ImplicitSolve::separator(const Particle* r, const Particle* r_prev, Particle* z) {
     // Forward over the separator rows (the parts' shares summed in part order), then backward.
     const uint32_t sep = begin_[kParts], m = begin_[kParts + 1];
     for (uint32_t row = sep; row < m; ++row) {
-        const size_t s = size_t(row - sep) * kParts;
         Lanes v = lanes(r[particle_[row]]);
         for (int p = 0; p < kParts; ++p)
-            for (int l = 0; l < 4; ++l) v.v[l] -= sep_sum_[s + p].v[l];
+            for (int l = 0; l < 4; ++l) v.v[l] -= sep_sum_[size_t(p) * sep_stride_ + (row - sep)].v[l];
         y_[row] = v;
     }
-    for (uint32_t g = part_group_[kParts]; g < part_group_[kParts + 1]; ++g) forward_group(g, nullptr, 0, 0);
+    for (uint32_t g = part_group_[kParts]; g < part_group_[kParts + 1]; ++g) forward_group(g, nullptr, 0);
     part_dots_[kParts] = back_substitute(part_group_[kParts], part_group_[kParts + 1], r, r_prev, z);
 }
 

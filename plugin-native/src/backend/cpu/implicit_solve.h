@@ -115,8 +115,8 @@ class ImplicitSolve {
     Dots precondition(const Particle* r, const Particle* r_prev, Particle* z, ThreadPool* pool);
     // The substitutions with L's values (one per entry: A's three axes are equal).
     void forward_part(int p, const Particle* r);
-    /// Forward substitution of group g; a part's shares of separator rows go to t[(row - base) * stride].
-    void forward_group(uint32_t g, Lanes* t, uint32_t base, uint32_t stride);
+    /// Forward substitution of group g; a part's shares of separator rows go to t[row - base].
+    void forward_group(uint32_t g, Lanes* t, uint32_t base);
     void separator(const Particle* r, const Particle* r_prev, Particle* z);
     /// Back substitution over groups [first, last).
     Dots back_substitute(uint32_t first, uint32_t last, const Particle* r, const Particle* r_prev, Particle* z);
@@ -146,6 +146,7 @@ class ImplicitSolve {
     std::vector<Lanes> group_tri_;    ///< kGroupWidth per group: record k, lane kk < k: L[first + k][first + kk]
     std::vector<Lanes> y_;            ///< scratch, one per factor row
     std::vector<Lanes> sep_sum_;      ///< per part and separator row: sum of L_sk y_k over the part's k
+    uint32_t sep_stride_ = 0;         ///< part p's sums: sep_sum_[p * sep_stride_ + row - separator's first]
     Dots part_dots_[kParts + 1];      ///< the parts' and the separator's share of the dot products
     std::vector<double> block_sum_;   ///< over_blocks' per-block results
     // Conjugate gradients, one record per particle: residual, the previous one, preconditioned
