@@ -35,6 +35,20 @@ bool dense_cholesky(double* a, uint32_t m) {
     return m > 0;
 }
 
+/// fn(begin, end) over [0, count) in pool->size() contiguous ranges, one per thread, or in one call
+/// without a pool; fn's result per item must not depend on the split.
+template <class Fn>
+void over_ranges(ThreadPool* pool, uint32_t count, Fn&& fn) {
+    if (!pool || pool->size() == 1) {
+        fn(0u, count);
+        return;
+    }
+    const uint32_t threads = pool->size();
+    pool->run_on_all([&](uint32_t t) {
+        fn(uint32_t(uint64_t(count) * t / threads), uint32_t(uint64_t(count) * (t + 1) / threads));
+    });
+}
+
 /// b = (L L^T)^-1 b with dense_cholesky's L.
 void dense_solve(const double* l, double* b, uint32_t m) {
     for (uint32_t i = 0; i < m; ++i) {
@@ -259,7 +273,15 @@ void CoarseLevels::build(const Topology& topo, const Particle* x) {
                     coarse[level.parent[a]].push_back(level.parent[level.col[e]]);
         reach = std::move(coarse);
         levels_.emplace_back();
-        levels_.back().count = uint32_t(coord.size());
+        Level& next = levels_.back();
+        next.count = uint32_t(coord.size());
+        const Level& below = levels_[levels_.size() - 2];
+        next.child_start.assign(next.count + 1, 0);
+        for (uint32_t a = 0; a < below.count; ++a) ++next.child_start[below.parent[a] + 1];
+        for (uint32_t p = 0; p < next.count; ++p) next.child_start[p + 1] += next.child_start[p];
+        next.child.resize(below.count);
+        std::vector<uint32_t> put(next.child_start.begin(), next.child_start.end() - 1);
+        for (uint32_t a = 0; a < below.count; ++a) next.child[put[below.parent[a]]++] = a;
     }
     levels_.back().parent.clear();
     const uint32_t m = 3 * levels_.back().count;
@@ -317,30 +339,34 @@ void CoarseLevels::assemble_node(const kernels::SubstepContext& c, const Particl
     level.diag[a] = block(diag);
 }
 
-bool CoarseLevels::factor() {
+bool CoarseLevels::factor(ThreadPool* pool) {
     if (levels_.empty()) return false;
-    // H_l+1 = P^T H_l P: each node's blocks go to its parent's row; a block between two nodes of
-    // one parent to that parent's diagonal.
+    // H_l+1 = P^T H_l P, row by row of H_l+1 (rows on different threads): its children's blocks, in
+    // ascending order; a block between two children to the diagonal. Each child's smoother inverse
+    // on the way.
     for (size_t l = 0; l + 1 < levels_.size(); ++l) {
         Level& fine = levels_[l];
         Level& coarse = levels_[l + 1];
-        std::fill(coarse.diag.begin(), coarse.diag.end(), Block());
-        std::fill(coarse.off.begin(), coarse.off.end(), Block());
-        for (uint32_t a = 0; a < fine.count; ++a) {
-            const uint32_t p = fine.parent[a];
-            coarse.diag[p].add(fine.diag[a]);
-            for (uint32_t e = fine.row_start[a]; e < fine.row_start[a + 1]; ++e) {
-                const uint32_t q = fine.parent[fine.col[e]];
-                if (q == p)
-                    coarse.diag[p].add(fine.off[e]);
-                else
-                    coarse.off[find_column(coarse.col, coarse.row_start[p], coarse.row_start[p + 1], q)].add(fine.off[e]);
+        over_ranges(fine.count >= kMinParallelNodes ? pool : nullptr, coarse.count, [&](uint32_t begin, uint32_t end) {
+            for (uint32_t p = begin; p < end; ++p) {
+                Block& diag = coarse.diag[p] = Block();
+                const uint32_t row = coarse.row_start[p], row_end = coarse.row_start[p + 1];
+                std::fill(coarse.off.begin() + row, coarse.off.begin() + row_end, Block());
+                for (uint32_t c = coarse.child_start[p]; c < coarse.child_start[p + 1]; ++c) {
+                    const uint32_t a = coarse.child[c];
+                    diag.add(fine.diag[a]);
+                    for (uint32_t e = fine.row_start[a]; e < fine.row_start[a + 1]; ++e) {
+                        const uint32_t q = fine.parent[fine.col[e]];
+                        if (q == p)
+                            diag.add(fine.off[e]);
+                        else
+                            coarse.off[find_column(coarse.col, row, row_end, q)].add(fine.off[e]);
+                    }
+                    const glm::dmat3 inv = glm::inverse(matrix(fine.diag[a]));
+                    fine.diag_inv[a] = {{inv[0][0], inv[1][1], inv[2][2], inv[1][0], inv[2][0], inv[2][1]}};
+                }
             }
-        }
-        for (uint32_t a = 0; a < fine.count; ++a) {
-            const glm::dmat3 inv = glm::inverse(matrix(fine.diag[a]));
-            fine.diag_inv[a] = {{inv[0][0], inv[1][1], inv[2][2], inv[1][0], inv[2][0], inv[2][1]}};
-        }
+        });
     }
     const Level& last = levels_.back();
     const uint32_t m = 3 * last.count;
@@ -357,18 +383,28 @@ bool CoarseLevels::factor() {
     return dense_cholesky(dense_.data(), m);
 }
 
-void CoarseLevels::apply(const Particle* r) {
+void CoarseLevels::apply(const Particle* r, ThreadPool* pool) {
     Level& level = levels_[0];
-    for (uint32_t a = 0; a < level.count; ++a) {
-        glm::dvec3 sum(0.0);
-        for (uint32_t k = member_start_[a]; k < member_start_[a + 1]; ++k) sum += glm::dvec3(glm::vec3(r[member_[k]]));
-        level.r[a] = sum;
-    }
-    cycle(0);
+    over_ranges(level.count >= kMinParallelNodes ? pool : nullptr, level.count, [&](uint32_t begin, uint32_t end) {
+        for (uint32_t a = begin; a < end; ++a) {
+            glm::dvec3 sum(0.0);
+            for (uint32_t k = member_start_[a]; k < member_start_[a + 1]; ++k)
+                sum += glm::dvec3(glm::vec3(r[member_[k]]));
+            level.r[a] = sum;
+        }
+    });
+    cycle(0, pool);
 }
 
-void CoarseLevels::cycle(size_t l) {
+void CoarseLevels::cycle(size_t l, ThreadPool* pool) {
+    // Node by node on the pool (each node's value does not depend on the split), except the
+    // restriction's sums (a few additions per node) and the coarsest solve.
     Level& level = levels_[l];
+    auto each_node = [&](auto&& fn) {
+        over_ranges(level.count >= kMinParallelNodes ? pool : nullptr, level.count, [&](uint32_t begin, uint32_t end) {
+            for (uint32_t a = begin; a < end; ++a) fn(a);
+        });
+    };
     if (l + 1 == levels_.size()) {
         for (uint32_t a = 0; a < level.count; ++a)
             for (int k = 0; k < 3; ++k) dense_rhs_[3 * a + k] = level.r[a][k];
@@ -378,22 +414,20 @@ void CoarseLevels::cycle(size_t l) {
         return;
     }
     // t = r - H_l e
-    auto residual = [&] {
-        for (uint32_t a = 0; a < level.count; ++a) {
-            glm::dvec3 t = level.r[a] - level.diag[a] * level.e[a];
-            for (uint32_t e = level.row_start[a]; e < level.row_start[a + 1]; ++e) t -= level.off[e] * level.e[level.col[e]];
-            level.t[a] = t;
-        }
+    auto residual = [&](uint32_t a) {
+        glm::dvec3 t = level.r[a] - level.diag[a] * level.e[a];
+        for (uint32_t e = level.row_start[a]; e < level.row_start[a + 1]; ++e) t -= level.off[e] * level.e[level.col[e]];
+        level.t[a] = t;
     };
     Level& coarse = levels_[l + 1];
-    for (uint32_t a = 0; a < level.count; ++a) level.e[a] = kSmoothing * (level.diag_inv[a] * level.r[a]);
-    residual();
+    each_node([&](uint32_t a) { level.e[a] = kSmoothing * (level.diag_inv[a] * level.r[a]); });
+    each_node(residual);
     std::fill(coarse.r.begin(), coarse.r.end(), glm::dvec3(0.0));
     for (uint32_t a = 0; a < level.count; ++a) coarse.r[level.parent[a]] += level.t[a];
-    cycle(l + 1);
-    for (uint32_t a = 0; a < level.count; ++a) level.e[a] += coarse.e[level.parent[a]];
-    residual();
-    for (uint32_t a = 0; a < level.count; ++a) level.e[a] += kSmoothing * (level.diag_inv[a] * level.t[a]);
+    cycle(l + 1, pool);
+    each_node([&](uint32_t a) { level.e[a] += coarse.e[level.parent[a]]; });
+    each_node(residual);
+    each_node([&](uint32_t a) { level.e[a] += kSmoothing * (level.diag_inv[a] * level.t[a]); });
 }
 
 }  // namespace drape

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "backend/cpu/kernels.h"
+#include "backend/cpu/thread_pool.h"
 #include "core/topology.h"
 
 namespace drape {
@@ -99,18 +100,24 @@ class CoarseLevels {
     uint32_t node_count() const { return levels_.empty() ? 0 : levels_[0].count; }
     /// The coarser levels, the smoothers' block inverses and the coarsest level's Cholesky factor;
     /// false when there are no levels or a matrix is not positive definite (then it must not be used).
-    bool factor();
-    /// One V-cycle on level 1's share of r.
-    void apply(const Particle* r);
+    /// pool: threads for the per-node work (null: the caller alone; the same bits either way).
+    bool factor(ThreadPool* pool);
+    /// One V-cycle on level 1's share of r (pool as in factor).
+    void apply(const Particle* r, ThreadPool* pool);
     /// The correction at particle i (0 on kinematic particles).
     glm::vec3 at(uint32_t i) const { return cell_[i] < 0 ? glm::vec3(0.0f) : glm::vec3(levels_[0].e[cell_[i]]); }
 
   private:
     static constexpr uint32_t kCoarsestNodes = 32;  ///< solved densely: 96 unknowns, ~30 k multiply-adds
     static constexpr double kSmoothing = 2.0 / 3.0;  ///< Jacobi weight, below 2 / lambda_max(D_l^-1 H_l)
+    /// A level with fewer nodes runs on the caller alone: a pass over it is a few microseconds (a node
+    /// costs ~100-250 instructions), about what waking and joining the workers costs.
+    static constexpr uint32_t kMinParallelNodes = 256;
     struct Level {
         uint32_t count = 0;
         std::vector<uint32_t> parent;              ///< per node its node on the next level (none on the last)
+        std::vector<uint32_t> child_start, child;  ///< node a's nodes on the finer level, ascending: child[child_start[a] ..
+                                                   ///< child_start[a + 1]) (none on level 1)
         std::vector<uint32_t> row_start, col;      ///< off-diagonal blocks by rows, columns sorted
         std::vector<Block> diag, off;
         std::vector<Block> diag_inv;               ///< smoother
@@ -121,7 +128,7 @@ class CoarseLevels {
     std::vector<uint32_t> member_start_, member_;  ///< level-1 node a's particles
     std::vector<double> dense_;          ///< coarsest H, then its Cholesky factor (row-major, lower)
     std::vector<double> dense_rhs_;
-    void cycle(size_t l);
+    void cycle(size_t l, ThreadPool* pool);
 };
 
 }  // namespace drape

@@ -297,9 +297,9 @@ double ImplicitSolve::over_blocks(ThreadPool* pool, Fn&& fn) {
     auto run = [&](uint32_t first, uint32_t last) {
         for (uint32_t b = first; b < last; ++b) block_sum_[b] = fn(b * kBlock, std::min(n, (b + 1) * kBlock));
     };
-    if (pool && pool->size() > 1 && n >= ThreadPool::kMinParallelCount) {
-        const uint32_t threads = pool->size();
-        pool->run_on_all([&](uint32_t t) { run(blocks * t / threads, blocks * (t + 1) / threads); });
+    if (ThreadPool* threads = parallel(pool)) {
+        const uint32_t count = threads->size();
+        threads->run_on_all([&](uint32_t t) { run(blocks * t / count, blocks * (t + 1) / count); });
     } else {
         run(0, blocks);
     }
@@ -404,7 +404,7 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
             over_items(pool, coarse_.patch_count(), [&](uint32_t p) { coarse_.assemble(c, start, iterate, p); });
             with_coarse_ = coarse_.factor();
             over_items(pool, levels_.node_count(), [&](uint32_t a) { levels_.assemble_node(c, start, iterate, a); });
-            with_levels_ = levels_.factor();
+            with_levels_ = levels_.factor(parallel(pool));
             restart = true;
         }
         const Dots dots = precondition(r_.data(), r_prev_.data(), first ? p_.data() : z_.data(), pool);
@@ -441,10 +441,10 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
 
 template <class Fn>
 void ImplicitSolve::over_items(ThreadPool* pool, uint32_t count, Fn&& fn) {
-    if (pool && pool->size() > 1 && r_.size() >= ThreadPool::kMinParallelCount) {
-        const uint32_t threads = pool->size();
-        pool->run_on_all([&](uint32_t t) {
-            for (uint32_t p = t; p < count; p += threads) fn(p);
+    if (ThreadPool* threads = parallel(pool)) {
+        const uint32_t step = threads->size();
+        threads->run_on_all([&](uint32_t t) {
+            for (uint32_t p = t; p < count; p += step) fn(p);
         });
     } else {
         for (uint32_t p = 0; p < count; ++p) fn(p);
@@ -456,23 +456,22 @@ ImplicitSolve::Dots ImplicitSolve::precondition(const Particle* r, const Particl
     // Parts on their own threads (part p on thread p mod size), or one after the other: the same
     // arithmetic either way. Each part sums its rows' dot products in row order, the separator
     // last; the sums are added in part order.
-    const bool threaded = pool && pool->size() > 1 && particle_.size() >= ThreadPool::kMinParallelCount;
+    ThreadPool* threads = parallel(pool);
     auto each_part = [&](auto&& fn) {
-        if (!threaded) {
+        if (!threads) {
             for (int p = 0; p < kParts; ++p) fn(p);
             return;
         }
-        const uint32_t threads = pool->size();
-        pool->run_on_all([&](uint32_t t) {
+        threads->run_on_all([&](uint32_t t) {
             for (int p = 0; p < kParts; ++p)
-                if (uint32_t(p) % threads == t) fn(p);
+                if (uint32_t(p) % threads->size() == t) fn(p);
         });
     };
     if (with_coarse_) {
         over_items(pool, coarse_.patch_count(), [&](uint32_t p) { coarse_.restrict_residual(r, p); });
         coarse_.solve();
     }
-    if (with_levels_) levels_.apply(r);
+    if (with_levels_) levels_.apply(r, threads);
     each_part([&](int p) { forward_part(p, r); });
     separator(r, r_prev, z);
     each_part([&](int p) { part_dots_[p] = back_substitute(part_group_[p], part_group_[p + 1], r, r_prev, z); });
