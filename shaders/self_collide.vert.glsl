@@ -16,12 +16,6 @@
 #ifndef DRAPE_SLOTS
 #define DRAPE_SLOTS 12
 #endif
-#ifndef DRAPE_TEX_WIDTH
-#define DRAPE_TEX_WIDTH 1024
-#endif
-#ifndef DRAPE_HASH_WIDTH
-#define DRAPE_HASH_WIDTH 1024
-#endif
 #ifndef DRAPE_SELF_LAYERS
 #define DRAPE_SELF_LAYERS 8
 #endif
@@ -31,6 +25,7 @@
 precision highp float;
 precision highp int;
 
+#include "layout.h"  // DRAPE_TEX_WIDTH: the particle textures and the hash table
 #include "self_contact.h"
 
 uniform highp sampler2D u_x;     // positions at the end of the substep (state records)
@@ -118,7 +113,7 @@ void main() {
         for (int c = 0; c < 27; ++c) {
             ivec3 cell = ci + ivec3(c % 3 - 1, (c / 3) % 3 - 1, c / 9 - 1);
             uint b = self_bucket(cell, mask);
-            ivec2 t = ivec2(int(b % uint(DRAPE_HASH_WIDTH)), int(b / uint(DRAPE_HASH_WIDTH)));
+            ivec2 t = ivec2(int(b % uint(DRAPE_TEX_WIDTH)), int(b / uint(DRAPE_TEX_WIDTH)));
             // Layers fill in order: the first empty one ends the bucket (samplers are indexed by
             // constants only in GLSL ES 3.00, hence one line per layer).
             uint stored = texelFetch(u_layer0, t, 0).r;

@@ -662,7 +662,7 @@ INSTANTIATE_TEST_SUITE_P(R13, GlesImplicitRest,
 
 // The coarse levels (gles_coarse.h, one V-cycle per substep) carry the stretch across the cloth: the
 // 65^2 curtain (1 kg, the bench's rest scene) at the default settings is within 0.5 % of the Newton
-// equilibrium at every vertex after 2 s. Measured (llvmpipe): 6.5e-5 after 2 s, 6.1e-3 after 1 s;
+// equilibrium at every vertex after 2 s. Measured (llvmpipe): 4.55e-5 after 2 s, 6.1e-3 after 1 s;
 // without the coarse levels 27 % after 2 s and 6.9 % after 4 s (swinging about it, 12 % at 10 s
 // at 257^2). At 129^2 (a one-off run, not here: ~1 s a step on llvmpipe): 3.3e-3 after 2 s, 2.1e-4
 // after 3 s.

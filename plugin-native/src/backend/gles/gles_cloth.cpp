@@ -705,6 +705,8 @@ void GlesCloth::begin_passes() {
     used_program_ = 0;
     bound_vao_ = 0;
     unpack_buffer_ = 0;
+    feedback_[0] = feedback_[1] = 0;  // every pass sequence ends with unbind_outputs
+    coarse_written_.buffer = 0;       // and the coarse rows are copied before it ends
 }
 
 void GlesCloth::use_program(Program& p, int x, int aux) {
@@ -792,23 +794,39 @@ void GlesCloth::feedback_draw(GLuint vao, uint32_t count, GLuint written, GLuint
     glEndTransformFeedback();
 }
 
-void GlesCloth::draw(GLuint vao, int out, int out2) {
-    // Outputs bound on the default transform feedback for this pass only (transform-feedback
-    // objects made once per output pair were measured wrong on softpipe: 1.3e-3 m off after one
-    // step), and unbound after it, before later passes read them.
+void GlesCloth::bind_outputs(int out, int out2) {
+    // On the default transform feedback (transform-feedback objects made once per output pair
+    // were measured wrong on softpipe: 1.3e-3 m off after one step).
     const size_t n = topo_.particle_count;
-    if (out2 >= 0) {
-        // Separate attribs: v_x -> binding 0, v_d -> binding 1, one state record each.
-        glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[out], 0, GLsizeiptr(n * sizeof(Particle)));
-        glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 1, gl_.buffers[out2], 0, GLsizeiptr(n * sizeof(Particle)));
-    } else {
-        // Interleaved: one displacement-iterate record per particle.
-        glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, gl_.buffers[out], 0,
-                          GLsizeiptr(n * record_ * sizeof(Particle)));
+    // Separate attribs: one state record each; interleaved: one displacement-iterate record.
+    const GLuint buffer[2] = {gl_.buffers[out], out2 >= 0 ? gl_.buffers[out2] : 0};
+    const GLsizeiptr size[2] = {GLsizeiptr(n * (out2 >= 0 ? 1 : record_) * sizeof(Particle)),
+                                out2 >= 0 ? GLsizeiptr(n * sizeof(Particle)) : 0};
+    for (int k = 0; k < 2; ++k) {
+        if (feedback_[k] == buffer[k] && feedback_size_[k] == size[k]) continue;
+        if (buffer[k])
+            glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, GLuint(k), buffer[k], 0, size[k]);
+        else
+            glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, GLuint(k), 0);
+        feedback_[k] = buffer[k];
+        feedback_size_[k] = size[k];
     }
-    feedback_draw(vao, uint32_t(n), gl_.buffers[out], out2 >= 0 ? gl_.buffers[out2] : 0);
-    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
-    if (out2 >= 0) glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, 0);
+}
+
+void GlesCloth::unbind_outputs() {
+    for (int k = 0; k < 2; ++k)
+        if (feedback_[k]) {
+            glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, GLuint(k), 0);
+            feedback_[k] = 0;
+        }
+}
+
+void GlesCloth::draw(GLuint vao, int out, int out2, int read_x, int read_aux) {
+    bind_outputs(out, out2);
+    if (read_x >= 0) refresh(read_x);
+    if (read_aux >= 0) refresh(read_aux);
+    flush_coarse();
+    feedback_draw(vao, uint32_t(topo_.particle_count), gl_.buffers[out], out2 >= 0 ? gl_.buffers[out2] : 0);
     tex_stale_[out] = true;
     if (out2 >= 0) tex_stale_[out2] = true;
 }
@@ -1023,10 +1041,7 @@ void GlesCloth::use_uniforms(float h) {
 void GlesCloth::run_pass(Program& p, int x, int aux, int out, int out2, bool constraint, const glm::vec4& sub,
                          const glm::vec2& chebyshev) {
     // Passes that fetch neighbours read x and aux as textures too (predict only with dashpots).
-    if (constraint || params_.model == DRAPE_MODEL_MASS_SPRING || predict_has_dashpot()) {
-        refresh(x);
-        refresh(aux);
-    }
+    const bool fetches = constraint || params_.model == DRAPE_MODEL_MASS_SPRING || predict_has_dashpot();
     use_program(p, x, aux);
     set_uniform(p, uSubstep, sub);
     set_uniform(p, uChebyshev, glm::vec4(chebyshev, 0.0f, 0.0f));
@@ -1035,7 +1050,7 @@ void GlesCloth::run_pass(Program& p, int x, int aux, int out, int out2, bool con
     const uint32_t inputs = constraint           ? kIterateRecords
                             : !kinematic_on_gpu() ? 0u
                                                   : kKinematicInputs | (grabs_on_gpu_ ? kGrabTargets : 0u);
-    draw(vertex_array(x, aux, inputs), out, out2);
+    draw(vertex_array(x, aux, inputs), out, out2, fetches ? x : -1, fetches ? aux : -1);
 }
 
 void GlesCloth::move_gpu_state(Program& p, const RigidMove& m) {
@@ -1048,6 +1063,7 @@ void GlesCloth::move_gpu_state(Program& p, const RigidMove& m) {
     glUniform3fv(p.u[uMoveTo], 1, &m.to.x);
     glUniform1f(p.u[uMoveKeepVelocity], m.keep_velocity ? 1.0f : 0.0f);
     draw(vertex_array(cur, disp, 0), g_[2], g_[3]);
+    unbind_outputs();  // a move runs outside the substep loop: the passes after it read without binding outputs
     std::swap(cur, g_[2]);
     std::swap(disp, g_[3]);
 }
@@ -1106,31 +1122,44 @@ Result GlesCloth::prepare_coarse(float h) {
 void GlesCloth::coarse_pass(Program& p, int x, int aux, const glm::vec4& offsets, uint32_t write, uint32_t count) {
     use_program(p, x, aux);
     set_uniform(p, uCoarse, offsets);
-    // Into the other vector buffer than the last pass: the one the texture was just refreshed from
-    // may stay on the pixel-unpack binding (only the texture is read, so which buffer holds a
-    // section's last values does not matter).
+    // Into the other vector buffer than the last pass: the one the texture is refreshed from may
+    // stay on the pixel-unpack binding (only the texture is read, so which buffer holds a section's
+    // last values does not matter). Outputs bound before the inputs are read (bind_outputs).
     const GLuint vec = gl_.coarse_vec[coarse_flip_];
     coarse_flip_ ^= 1;
     glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, vec, GLintptr(size_t(write) * 16), GLsizeiptr(size_t(count) * 16));
+    feedback_[0] = vec;
+    feedback_size_[0] = 0;  // a section: bound again by the next pass whatever it binds
+    if (feedback_[1]) {
+        glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, 0);
+        feedback_[1] = 0;
+    }
+    if (x >= 0) refresh(x);
+    if (aux >= 0) refresh(aux);
+    flush_coarse();
     feedback_draw(gl_.coarse_vao, count, vec);
-    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    coarse_written_ = {vec, write, count};
+}
+
+void GlesCloth::flush_coarse() {
+    if (!coarse_written_.buffer) return;
     // The rows written, into the texture the next pass reads (sections start on whole rows).
     if (active_unit_ != kCoarseVecUnit) {
         glActiveTexture(GL_TEXTURE0 + GLenum(kCoarseVecUnit));
         active_unit_ = kCoarseVecUnit;
     }
-    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, vec);
-    unpack_buffer_ = vec;
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, GLint(write / kTexWidth), kTexWidth, GLsizei(rows_for(count)), GL_RGBA, GL_FLOAT,
-                    reinterpret_cast<const void*>(size_t(write) * 16));
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, coarse_written_.buffer);
+    unpack_buffer_ = coarse_written_.buffer;
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, GLint(coarse_written_.write / kTexWidth), kTexWidth,
+                    GLsizei(rows_for(coarse_written_.count)), GL_RGBA, GL_FLOAT,
+                    reinterpret_cast<const void*>(size_t(coarse_written_.write) * 16));
+    coarse_written_.buffer = 0;
 }
 
 void GlesCloth::run_coarse(Program* const p[4], int in, int cur) {
     const std::vector<CoarseLevel>& l = coarse_.levels;
     const size_t top = l.size() - 1;
     auto at = [](uint32_t a, uint32_t b = 0, uint32_t c = 0) { return glm::vec4(float(a), float(b), float(c), 0.0f); };
-    refresh(in);
-    refresh(cur);
     coarse_pass(*p[0], in, cur, at(l[1].members), l[1].residual, l[1].count);
     for (size_t k = 1; k < top; ++k)
         coarse_pass(*p[1], -1, -1, at(l[k + 1].members, l[k].info, l[k].residual), l[k + 1].residual, l[k + 1].count);
@@ -1140,9 +1169,8 @@ void GlesCloth::run_coarse(Program* const p[4], int in, int cur) {
 }
 
 void GlesCloth::run_tether(Program& p, int x, int d, int out_x, int out_d) {
-    refresh(x);  // anchors' positions
     use_program(p, x, -1);
-    draw(vertex_array(x, d, kTetherInputs), out_x, out_d);
+    draw(vertex_array(x, d, kTetherInputs), out_x, out_d, x);  // x: the anchors' positions
 }
 
 uint32_t GlesCloth::build_shapes(uint32_t sub, uint32_t substeps) {
@@ -1403,6 +1431,7 @@ Result GlesCloth::gpu_step(float dt) {
         h_prev_ = h;
         fresh_ = false;
     }
+    unbind_outputs();
     if (p_coarse[0]) {  // the output pass's triangles back on their unit
         glActiveTexture(GL_TEXTURE0 + GLenum(kTrisUnit));
         glBindTexture(GL_TEXTURE_2D, gl_.tri_tex);

@@ -206,8 +206,25 @@ private:
     /// has kIterateRecords) and aux (state records), plus the inputs `inputs` names. Made once.
     GLuint vertex_array(int x, int aux, uint32_t inputs);
     /// One transform-feedback draw over the particles into buffer out (out2 < 0: one interleaved
-    /// iterate record per particle) or out and out2 (one state record each, separate attribs).
-    void draw(GLuint vao, int out, int out2);
+    /// iterate record per particle) or out and out2 (one state record each, separate attribs),
+    /// fetching buffers read_x and read_aux as textures (-1: none; refreshed after the outputs are
+    /// bound, see bind_outputs). The outputs stay bound until the next pass binds its own.
+    void draw(GLuint vao, int out, int out2, int read_x = -1, int read_aux = -1);
+    /// Binds a pass's outputs (as draw says) in place of the last pass's, before anything reads the
+    /// pass's inputs. A buffer bound for transform feedback must not be read or written through
+    /// another binding meanwhile (OpenGL ES 3.0.6 section 2.15.2: "if a buffer object is
+    /// simultaneously bound to a transform feedback buffer binding point and elsewhere in the GL,
+    /// any writes to or reads from the buffer generate undefined values"), and the next pass reads
+    /// what this one wrote: binding the next outputs first moves it off the binding in the same call
+    /// that a separate unbind after each draw would cost. Index 1 is unbound when the pass has one
+    /// output (its last buffer may be an input).
+    void bind_outputs(int out, int out2);
+    /// Takes every buffer off the transform-feedback bindings: after the passes, before other GL
+    /// work reads them.
+    void unbind_outputs();
+    /// Copies the rows the last coarse pass wrote into the coarse vector texture (after the next
+    /// pass bound its outputs, see bind_outputs).
+    void flush_coarse();
     /// Begin, draw `count` points, end, with the transform-feedback buffers (`written`,
     /// `written2`) already bound.
     void feedback_draw(GLuint vao, uint32_t count, GLuint written, GLuint written2 = 0);
@@ -275,7 +292,7 @@ private:
     /// down, solve and up programs.
     void run_coarse(Program* const p[4], int in, int cur);
     /// One pass over `count` nodes of a coarse level into the vector buffer at texel `write`
-    /// (refreshed into its texture after); u_coarse = offsets.
+    /// (copied into its texture by the next pass, flush_coarse); u_coarse = offsets.
     void coarse_pass(Program& p, int x, int aux, const glm::vec4& offsets, uint32_t write, uint32_t count);
     bool has_tethers() const { return params_.max_stretch > 0 && !kinematic_.empty(); }
     /// CpuCloth::collide: drag share (first substep, `drag`: drag_views_, drag_touches_) and colliders (shape_data_,
@@ -311,6 +328,12 @@ private:
     GLuint used_program_ = 0;      // within begin_passes .. end of step
     int active_unit_ = -1;
     GLuint unpack_buffer_ = 0;     // bound to GL_PIXEL_UNPACK_BUFFER (a texture's source), 0: none
+    GLuint feedback_[2] = {};      // bound to transform-feedback indices 0, 1 by the passes, 0: none
+    GLsizeiptr feedback_size_[2] = {};
+    struct {
+        GLuint buffer = 0;  // 0: nothing to copy
+        uint32_t write = 0, count = 0;
+    } coarse_written_;  // the last coarse pass's output, not yet in the texture (flush_coarse)
     GLuint bound_vao_ = 0;         // within begin_passes .. end of step, 0: unknown
     GLint max_vertex_uniform_vectors_ = 0;
     bool gpu_newer_ = false;       // CPU copy is stale

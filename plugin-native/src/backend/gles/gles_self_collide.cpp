@@ -86,7 +86,6 @@ Result make_objects(GlObjects& gl, uint32_t n, uint32_t slots, const std::vector
     upload_uint_texture(o.rest, gl.staging, rest_rows, texels);
 
     // Programs. The hash: layer 0, later layers (DRAPE_PEEL); the collide pass (two outputs).
-    const std::string width = "#define DRAPE_HASH_WIDTH " + std::to_string(kTexWidth) + "\n";
     auto with = [](const char* source, const std::string& defines) {
         std::string s(source);
         const size_t eol = s.find('\n');
@@ -94,19 +93,18 @@ Result make_objects(GlObjects& gl, uint32_t n, uint32_t slots, const std::vector
     };
     const std::vector<std::pair<GLuint, const char*>> attribs{{0, "a_x"}, {1, "a_aux"}};
     const std::string peel_fs = with(shaders::self_hash_frag, "#define DRAPE_PEEL 1\n");
-    if (Result r = link(with(shaders::self_hash_vert, width), "self_hash.vert.glsl", {}, GL_INTERLEAVED_ATTRIBS, attribs,
+    if (Result r = link(shaders::self_hash_vert, "self_hash.vert.glsl", {}, GL_INTERLEAVED_ATTRIBS, attribs,
                         &o.first, shaders::self_hash_frag, "self_hash.frag.glsl");
         !r.ok())
         return r;
     gl.programs.push_back(o.first);
-    if (Result r = link(with(shaders::self_hash_vert, width), "self_hash.vert.glsl", {}, GL_INTERLEAVED_ATTRIBS, attribs,
+    if (Result r = link(shaders::self_hash_vert, "self_hash.vert.glsl", {}, GL_INTERLEAVED_ATTRIBS, attribs,
                         &o.peel, peel_fs.c_str(), "self_hash.frag.glsl");
         !r.ok())
         return r;
     gl.programs.push_back(o.peel);
     o.u_prev = glGetUniformLocation(o.peel, "u_prev");
-    const std::string collide_defines = width + "#define DRAPE_TEX_WIDTH " + std::to_string(kTexWidth) +
-                                        "\n#define DRAPE_SLOTS " + std::to_string(slots) +
+    const std::string collide_defines = "#define DRAPE_SLOTS " + std::to_string(slots) +
                                         "\n#define DRAPE_SELF_LAYERS " + std::to_string(kSelfLayers) + "\n";
     if (Result r = link(with(shaders::self_collide_vert, collide_defines), "self_collide.vert.glsl", {"v_x", "v_d"},
                         GL_SEPARATE_ATTRIBS, attribs, &o.collide);
@@ -197,6 +195,7 @@ void GlesSelfCollide::run(GlesCloth& c, int x, int d, int out_x, int out_d) {
     SelfCollideGl& o = c.gl_.self;
     const GLsizei n = GLsizei(c.topo_.particle_count);
     const GLuint vao = c.vertex_array(x, d, 0);
+    c.bind_outputs(out_x, out_d);  // before the hash reads x and d (GlesCloth::bind_outputs)
     // Hash: the particles as points, layer by layer, into the layer textures.
     glDisable(GL_RASTERIZER_DISCARD);
     c.bind_vertex_array(vao);
@@ -213,8 +212,6 @@ void GlesSelfCollide::run(GlesCloth& c, int x, int d, int out_x, int out_d) {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, c.own_framebuffer());
     glEnable(GL_RASTERIZER_DISCARD);
     // Collide: x, d -> out_x, out_d.
-    c.refresh(x);
-    c.refresh(d);
     glUseProgram(o.collide);
     c.used_program_ = o.collide;
     if (o.unit_x != x) {
@@ -225,7 +222,7 @@ void GlesSelfCollide::run(GlesCloth& c, int x, int d, int out_x, int out_d) {
         glUniform1i(o.u_collide_aux, d);
         o.unit_aux = d;
     }
-    c.draw(vao, out_x, out_d);
+    c.draw(vao, out_x, out_d, x, d);
 }
 
 }  // namespace drape::gles
