@@ -107,13 +107,15 @@ void CoarseSpace::build(const Topology& topo, const Particle* x) {
 }
 
 
-void CoarseSpace::assemble(const kernels::SubstepContext& c, const Particle* start, const Particle* disp, uint32_t p) {
+void CoarseSpace::assemble(const kernels::SubstepContext& c, const Particle* start, const Particle* disp,
+                           const kernels::SpringFrames& frames, uint32_t p) {
     // Row block p of Hc = G^T H G. With G_i = [I | -S(o_i)] (a translation t and rotation w move
     // particle i by t + w x o_i; o_i is x_i minus its patch's reference point, the patch's first
     // particle: any point spans the same rigid motions) and K_ij a spring's 3x3 block of H:
     // - mass:  G_i^T (m_i/h^2) G_i;
     // - a spring inside the patch moves only with the rotation, by -S(x_i - x_j) w; n is along
-    //   x_i - x_j, so it adds T S(d)^T S(d) = T (|d|^2 I - d d^T) (T: its tension across);
+    //   x_i - x_j, so it adds T S(d)^T S(d) = T (|d|^2 I - d d^T) (T: its tension across; summed as
+    //   sum T |d|^2 and sum T d d^T, symmetric, and added once);
     // - a spring to a kinematic particle or another patch q: G_i^T K_ij G_i to block pp, and, from
     //   this end, -G_i^T K_ij G_j to block pq (q's rows take the other end's share).
     constexpr uint32_t kMaxPatches = kCellsPerAxis * kCellsPerAxis * kCellsPerAxis;
@@ -137,6 +139,8 @@ void CoarseSpace::assemble(const kernels::SubstepContext& c, const Particle* sta
     const float kd_h = c.damping / c.h;
     const float inv_h2 = 1.0f / (c.h * c.h);
     glm::mat3 self_tt(0.0f), self_tr(0.0f), self_rr(0.0f);  // block pp (its rt is tr^T)
+    kernels::SymMat3 inside;  // the springs inside the patch: sum T d d^T, and in inside_tt sum T |d|^2
+    float inside_tt = 0.0f;
     glm::mat3 move[kMaxPatches], turn[kMaxPatches];  // per patch q: sum of K_ij and of -K_ij S(o_j)
     for (uint32_t k = start_[p]; k < start_[p + 1]; ++k) {
         const uint32_t i = member_[k];
@@ -144,19 +148,21 @@ void CoarseSpace::assemble(const kernels::SubstepContext& c, const Particle* sta
         offset_[i] = oi;
         glm::mat3 own(inv_h2 / disp[i].w);  // masses, and springs leaving the patch
         uint32_t touched = 0;                // patches q != p with springs from i (bit q)
-        kernels::for_active_springs(c, i, [&](uint32_t j, float rest, float k) {
-            const glm::vec3 xj = pos(j), d = xi - xj;
-            float len;
-            const glm::vec3 n = kernels::direction(d, &len);
-            const float across = kernels::glsl::implicit_tension(len, rest, k, false);
+        kernels::for_active_slots(c, i, [&](uint32_t s, uint32_t j, float, float k) {
+            const float across = frames.across(s, i);
             if (patch_[j] == int32_t(p)) {
-                if (j > i) self_rr += across * (glm::mat3(glm::dot(d, d)) - glm::outerProduct(d, d));
+                if (j > i) {
+                    const glm::vec3 d = xi - pos(j);
+                    inside.add_outer(across, d);
+                    inside_tt += across * glm::dot(d, d);
+                }
                 return;
             }
-            const glm::mat3 kij = kernels::glsl::implicit_spring_block(n, k, kd_h, across);
+            const glm::mat3 kij = kernels::glsl::implicit_spring_block(frames.n(s, i), k, kd_h, across);
             own += kij;
             if (patch_[j] < 0) return;  // kinematic: G_j = 0
             const uint32_t q = uint32_t(patch_[j]);
+            const glm::vec3 xj = pos(j);
             if (!(touched & (1u << q))) {
                 touched |= 1u << q;
                 move[q] = turn[q] = glm::mat3(0.0f);
@@ -171,6 +177,9 @@ void CoarseSpace::assemble(const kernels::SubstepContext& c, const Particle* sta
         for (uint32_t q = 0; q < patches; ++q)
             if (touched & (1u << q)) add(q, -move[q], -turn[q], -(s * move[q]), -(s * turn[q]));
     }
+    const glm::vec3& o = inside.off;
+    self_rr += glm::mat3(inside_tt) -
+               glm::mat3(inside.diag.x, o.x, o.y, o.x, inside.diag.y, o.z, o.y, o.z, inside.diag.z);
     add(p, self_tt, self_tr, glm::transpose(self_tr), self_rr);
 }
 
@@ -193,6 +202,24 @@ void CoarseSpace::solve() {
     dense_solve(matrix_.data(), rhs_.data(), dofs());
     for (uint32_t i = 0; i < dofs(); ++i) motion_[i] = float(rhs_[i]);
 }
+
+namespace {
+
+CoarseLevels::Block block(const kernels::SymMat3& m) {
+    return {{m.diag.x, m.diag.y, m.diag.z, m.off.x, m.off.y, m.off.z}};
+}
+
+glm::dmat3 matrix(const CoarseLevels::Block& b) {
+    const double* v = b.v;
+    return glm::dmat3(v[0], v[3], v[4], v[3], v[1], v[5], v[4], v[5], v[2]);
+}
+
+/// Index of column b in a row's sorted columns [begin, end) (it is there).
+uint32_t find_column(const std::vector<uint32_t>& col, uint32_t begin, uint32_t end, uint32_t b) {
+    return uint32_t(std::lower_bound(col.begin() + begin, col.begin() + end, b) - col.begin());
+}
+
+}  // namespace
 
 void CoarseLevels::build(const Topology& topo, const Particle* x) {
     const uint32_t n = topo.particle_count;
@@ -284,56 +311,46 @@ void CoarseLevels::build(const Topology& topo, const Particle* x) {
         for (uint32_t a = 0; a < below.count; ++a) next.child[put[below.parent[a]]++] = a;
     }
     levels_.back().parent.clear();
+    const Level& first = levels_[0];
+    slot_off_.assign(size_t(n) * nb.slots, kInside);
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t s = 0; s < nb.count[i] && cell_[i] >= 0; ++s) {
+            const uint32_t a = uint32_t(cell_[i]);
+            const int32_t b = cell_[nb.index[size_t(i) * nb.slots + s]];
+            int32_t& to = slot_off_[size_t(i) * nb.slots + s];
+            if (b < 0)
+                to = kKinematic;
+            else if (b != int32_t(a))
+                to = int32_t(find_column(first.col, first.row_start[a], first.row_start[a + 1], uint32_t(b)));
+        }
     const uint32_t m = 3 * levels_.back().count;
     dense_.assign(size_t(m) * m, 0.0);
     dense_rhs_.assign(m, 0.0);
 }
 
-namespace {
-
-CoarseLevels::Block block(const kernels::SymMat3& m) {
-    return {{m.diag.x, m.diag.y, m.diag.z, m.off.x, m.off.y, m.off.z}};
-}
-
-glm::dmat3 matrix(const CoarseLevels::Block& b) {
-    const double* v = b.v;
-    return glm::dmat3(v[0], v[3], v[4], v[3], v[1], v[5], v[4], v[5], v[2]);
-}
-
-/// Index of column b in a row's sorted columns [begin, end) (it is there).
-uint32_t find_column(const std::vector<uint32_t>& col, uint32_t begin, uint32_t end, uint32_t b) {
-    return uint32_t(std::lower_bound(col.begin() + begin, col.begin() + end, b) - col.begin());
-}
-
-}  // namespace
-
-void CoarseLevels::assemble_node(const kernels::SubstepContext& c, const Particle* start, const Particle* disp,
-                                 uint32_t a) {
+void CoarseLevels::assemble_node(const kernels::SubstepContext& c, const Particle* disp,
+                                 const kernels::SpringFrames& frames, uint32_t a) {
     // Row a of H_1 = P_1^T H P_1: per member i its mass over h^2 and, per spring to a particle j outside
     // the cell, its block K_ij on the diagonal and -K_ij at j's cell (none to a kinematic j). A spring
     // inside the cell moves with it: no share.
     Level& level = levels_[0];
     const float kd_h = c.damping / c.h;
     const float inv_h2 = 1.0f / (c.h * c.h);
-    const uint32_t begin = level.row_start[a], end = level.row_start[a + 1];
-    for (uint32_t e = begin; e < end; ++e) level.off[e] = Block();
+    for (uint32_t e = level.row_start[a]; e < level.row_start[a + 1]; ++e) level.off[e] = Block();
     kernels::SymMat3 diag;  // float: the same sums as the residual's blocks
-    for (uint32_t k = member_start_[a]; k < member_start_[a + 1]; ++k) {
-        const uint32_t i = member_[k];
-        const glm::vec3 xi = glm::vec3(start[i]) + glm::vec3(disp[i]);
+    for (uint32_t m = member_start_[a]; m < member_start_[a + 1]; ++m) {
+        const uint32_t i = member_[m];
+        const int32_t* to = &slot_off_[size_t(i) * c.slots];
         diag.diag += inv_h2 / disp[i].w;
-        kernels::for_active_springs(c, i, [&](uint32_t j, float rest, float k) {
-            const int32_t b = cell_[j];
-            if (b == int32_t(a)) return;
-            float len;
-            const glm::vec3 n = kernels::direction(xi - (glm::vec3(start[j]) + glm::vec3(disp[j])), &len);
-            const float across = kernels::glsl::implicit_tension(len, rest, k, false);
+        kernels::for_active_slots(c, i, [&](uint32_t s, uint32_t, float, float k) {
+            if (to[s] == kInside) return;
+            const float across = frames.across(s, i);
             kernels::SymMat3 kij;  // glsl::implicit_spring_block
-            kij.add_outer(kernels::glsl::implicit_block_along(k, kd_h, across), n);
+            kij.add_outer(kernels::glsl::implicit_block_along(k, kd_h, across), frames.n(s, i));
             kij.diag += across;
             diag.diag += kij.diag;
             diag.off += kij.off;
-            if (b >= 0) level.off[find_column(level.col, begin, end, uint32_t(b))].add(block(kij), -1);
+            if (to[s] >= 0) level.off[uint32_t(to[s])].add(block(kij), -1);
         });
     }
     level.diag[a] = block(diag);

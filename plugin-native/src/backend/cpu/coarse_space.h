@@ -34,8 +34,9 @@ class CoarseSpace {
 
     // One solve's use, in this order; the per-patch calls may run on different threads.
     /// Patch p's rows of Hc at start + disp (H as kernels::implicit_curvature clamps it, plus the
-    /// masses over h^2).
-    void assemble(const kernels::SubstepContext& c, const Particle* start, const Particle* disp, uint32_t p);
+    /// masses over h^2), its springs' blocks from frames (written by the residual pass at disp).
+    void assemble(const kernels::SubstepContext& c, const Particle* start, const Particle* disp,
+                  const kernels::SpringFrames& frames, uint32_t p);
     /// Factors Hc (Cholesky); false if it is not positive definite (then it must not be used).
     bool factor();
     /// Patch p's share of G^T r.
@@ -93,10 +94,11 @@ class CoarseLevels {
     void build(const Topology& topo, const Particle* x);
 
     // One solve's use, in this order.
-    /// Level 1's rows of H at start + disp (as kernels::implicit_curvature clamps it, plus the
-    /// masses over h^2), node by node (the nodes may run on different threads), then the coarser
-    /// levels.
-    void assemble_node(const kernels::SubstepContext& c, const Particle* start, const Particle* disp, uint32_t a);
+    /// Level 1's rows of H at disp (as kernels::implicit_curvature clamps it, plus the masses over
+    /// h^2; the springs' blocks from frames, written by the residual pass at disp), node by node
+    /// (the nodes may run on different threads), then the coarser levels.
+    void assemble_node(const kernels::SubstepContext& c, const Particle* disp,
+                       const kernels::SpringFrames& frames, uint32_t a);
     uint32_t node_count() const { return levels_.empty() ? 0 : levels_[0].count; }
     /// The coarser levels, the smoothers' block inverses and the coarsest level's Cholesky factor;
     /// false when there are no levels or a matrix is not positive definite (then it must not be used).
@@ -126,6 +128,11 @@ class CoarseLevels {
     std::vector<Level> levels_;          ///< [0]: level 1 (cells of particles)
     std::vector<int32_t> cell_;          ///< per particle its level-1 node, -1 if kinematic
     std::vector<uint32_t> member_start_, member_;  ///< level-1 node a's particles
+    /// Per slot of the neighbour table (row-major), where its spring's -K_ij goes in level 1's
+    /// off-diagonal blocks (an index into off), or kInside (both ends in one cell: no share) or
+    /// kKinematic (the other end kinematic: the diagonal's share only).
+    std::vector<int32_t> slot_off_;
+    static constexpr int32_t kInside = -1, kKinematic = -2;
     std::vector<double> dense_;          ///< coarsest H, then its Cholesky factor (row-major, lower)
     std::vector<double> dense_rhs_;
     void cycle(size_t l, ThreadPool* pool);

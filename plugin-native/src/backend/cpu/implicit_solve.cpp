@@ -284,6 +284,7 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
             const uint8_t g = nb.group[size_t(i) * nb.slots + s];
             if (g < DRAPE_GROUP_COUNT && params.stiffness[g] > 0) col_k_[size_t(s) * n + i] = params.stiffness[g];
         }
+    frames_.assign(size_t(n) * nb.slots * 4, 0.0f);
     in_contact_.reserve(n);
     block_sum_.assign((n + kBlock - 1) / kBlock, 0.0);
     coarse_.build(topo, x);
@@ -317,13 +318,18 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
             if (contact_normal[i] != glm::vec3(0.0f)) in_contact_.push_back(i);
     normal_ = in_contact_.empty() ? nullptr : contact_normal;
     // r at the iterate, and r . p when p is given (the line search's slope at the new point); with
-    // blocks, also D (block_inv_) there. At a contact r loses its inward part (p has none, so r.p
-    // loses that part's share).
-    auto residual = [&](const Particle* p, bool blocks = false) {
+    // blocks, also D (block_inv_) there, with frames the springs' frames_. At a contact r loses its
+    // inward part (p has none, so r.p loses that part's share).
+    const kernels::SpringFrames frames{frames_.data(), c.stride};
+    auto residual = [&](const Particle* p, bool blocks = false, bool with_frames = false) {
         double rp = over_blocks(pool, [&](uint32_t b, uint32_t e) {
-            return blocks ? kernels::implicit_residual_simd<true>(c, col_k_.data(), iterate, target, start, p, r_.data(),
-                                                                  b, e, block_inv_.data())
-                          : kernels::implicit_residual_simd(c, col_k_.data(), iterate, target, start, p, r_.data(), b, e);
+            if (blocks)
+                return kernels::implicit_residual_simd<true>(c, col_k_.data(), iterate, target, start, p, r_.data(), b, e,
+                                                             block_inv_.data());
+            if (with_frames)
+                return kernels::implicit_residual_simd<false, true>(c, col_k_.data(), iterate, target, start, p,
+                                                                    r_.data(), b, e, nullptr, frames);
+            return kernels::implicit_residual_simd(c, col_k_.data(), iterate, target, start, p, r_.data(), b, e);
         });
         for (uint32_t i : in_contact_) {
             const glm::vec3 n = normal_[i];
@@ -386,24 +392,26 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
     while (it < max_iterations) {
         std::swap(r_, r_prev_);
         const bool first = it == 0;
-        double rp_new = residual(first ? nullptr : p_.data(), first && with_blocks_);
+        // Not converged in one iteration, so in motion: from here on the preconditioner adds the
+        // coarse space and levels (coarse_space.h), assembled at this iterate from the springs' frames
+        // that its residual passes write; a cloth at rest never pays for them.
+        const bool assemble = it == 1 && with_blocks_;
+        double rp_new = residual(first ? nullptr : p_.data(), first && with_blocks_, assemble);
         bool restart = first;
         if (!first && rp_prev + rp_new < 0) {
             float back = alpha;
             for (uint32_t h = 0; h < kMaxHalvings && rp_prev + rp_new < 0; ++h) {
                 back *= 0.5f;
                 move(p_, -back);
-                rp_new = residual(p_.data());
+                rp_new = residual(p_.data(), false, assemble);
             }
             restart = true;
         }
-        if (it == 1 && with_blocks_) {
-            // Not converged in one iteration, so in motion: from here on the preconditioner adds the
-            // coarse space and levels (coarse_space.h), assembled at this iterate; a cloth at rest never
-            // pays for them.
-            over_items(pool, coarse_.patch_count(), [&](uint32_t p) { coarse_.assemble(c, start, iterate, p); });
+        if (assemble) {
+            over_items(pool, coarse_.patch_count(),
+                       [&](uint32_t p) { coarse_.assemble(c, start, iterate, frames, p); });
             with_coarse_ = coarse_.factor();
-            over_items(pool, levels_.node_count(), [&](uint32_t a) { levels_.assemble_node(c, start, iterate, a); });
+            over_items(pool, levels_.node_count(), [&](uint32_t a) { levels_.assemble_node(c, iterate, frames, a); });
             with_levels_ = levels_.factor(parallel(pool));
             restart = true;
         }

@@ -161,6 +161,9 @@ class ImplicitSolve {
     /// Per slot of the neighbour table, column-major like SubstepContext::col_index, its spring's
     /// stiffness (N/m; 0 where inactive or padding): the residual's springs in SIMD lanes.
     std::vector<float> col_k_;
+    /// The springs' directions and tensions (kernels::SpringFrames) that the residual pass writes in
+    /// the second iteration, for the coarse space and levels.
+    std::vector<float> frames_;
     bool with_blocks_ = true;           ///< this solve's preconditioner adds D^-1 r (not a plain 1-iteration step)
     CoarseSpace coarse_;
     bool with_coarse_ = false;          ///< this solve's preconditioner adds the coarse correction

@@ -70,16 +70,37 @@ inline bool active_slot(const SubstepContext& c, size_t slot) {
     return g < DRAPE_GROUP_COUNT && c.groups.active[g];
 }
 
-/// Calls fn(j, rest, k) for each active spring of particle i: the particle at its other end, its
-/// rest length (m) and stiffness (N/m). Row-major table: a particle's springs are contiguous.
+/// Calls fn(s, j, rest, k) for each active spring of particle i: its slot s in i's row, the particle
+/// at its other end, its rest length (m) and stiffness (N/m). Row-major table: a particle's springs
+/// are contiguous.
 template <class Fn>
-inline void for_active_springs(const SubstepContext& c, uint32_t i, Fn&& fn) {
+inline void for_active_slots(const SubstepContext& c, uint32_t i, Fn&& fn) {
     const size_t row = size_t(i) * c.slots;
     for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
         const size_t slot = row + s;
-        if (active_slot(c, slot)) fn(c.nbr_index[slot], c.nbr_rest[slot], c.groups.stiffness[c.nbr_group[slot]]);
+        if (active_slot(c, slot)) fn(s, c.nbr_index[slot], c.nbr_rest[slot], c.groups.stiffness[c.nbr_group[slot]]);
     }
 }
+
+/// for_active_slots without the slot: fn(j, rest, k).
+template <class Fn>
+inline void for_active_springs(const SubstepContext& c, uint32_t i, Fn&& fn) {
+    for_active_slots(c, i, [&](uint32_t, uint32_t j, float rest, float k) { fn(j, rest, k); });
+}
+
+/// IMPLICIT: per slot, its spring as the last residual pass that wrote them saw it at its iterate:
+/// the direction n of x_i - x_j and the tension across (glsl::implicit_tension, clamped), which is
+/// all a spring's block of H needs (glsl::implicit_spring_block). The coarse space and levels
+/// assemble their matrices from them instead of computing every direction again
+/// (implicit_solve.cpp). Column-major like SubstepContext::col_index, four rows of `stride` per
+/// slot (n.x, n.y, n.z, across), so four consecutive particles' values are one SIMD store.
+struct SpringFrames {
+    float* v = nullptr;  ///< 4 * slots * stride floats
+    uint32_t stride = 0;
+    float* at(uint32_t s, uint32_t row) const { return v + (size_t(s) * 4 + row) * stride; }
+    glm::vec3 n(uint32_t s, uint32_t i) const { return glm::vec3(at(s, 0)[i], at(s, 1)[i], at(s, 2)[i]); }
+    float across(uint32_t s, uint32_t i) const { return at(s, 3)[i]; }
+};
 
 /// glsl::direction with the length through a pointer (the IMPLICIT kernels' form).
 inline glm::vec3 direction(const glm::vec3& d, float* len) { return glsl::direction(d, *len); }
@@ -275,10 +296,11 @@ inline void implicit_predict(const SubstepContext& c, const Particle* x, const P
 /// Phi (implicit_curvature's H): I/(w_i h^2) plus its springs' blocks (glsl::implicit_spring_block,
 /// summed as iso I + sum along n n^T in symmetric form); 0 for kinematic particles. The springs'
 /// directions are at hand here, so the blocks cost no pass of their own.
-template <bool kBlocks = false>
+/// kFrames: also writes each spring's direction and tension to frames (SpringFrames).
+template <bool kBlocks = false, bool kFrames = false>
 inline double implicit_residual(const SubstepContext& c, const Particle* disp, const Particle* target,
                                 const Particle* start, const Particle* p, Particle* residual, uint32_t begin,
-                                uint32_t end, SymMat3* block_inv = nullptr) {
+                                uint32_t end, SymMat3* block_inv = nullptr, const SpringFrames& frames = {}) {
     const float kd_h = c.damping / c.h;
     const float inv_h2 = 1.0f / (c.h * c.h);
     double rp = 0;
@@ -290,15 +312,19 @@ inline double implicit_residual(const SubstepContext& c, const Particle* disp, c
             const glm::vec3 si(start[i]);
             float iso = inv_h2 / wi;
             SymMat3 nn;  // sum of along n n^T
-            for_active_springs(c, i, [&](uint32_t j, float rest, float k) {
+            for_active_slots(c, i, [&](uint32_t s, uint32_t j, float rest, float k) {
                 const glm::vec3 dij = di - glm::vec3(disp[j]);
                 float len;
                 const glm::vec3 n = direction((si - glm::vec3(start[j])) + dij, &len);
                 r += glsl::implicit_spring_force(n, len, dij, rest, k, kd_h);
-                if (kBlocks) {
+                if (kBlocks || kFrames) {
                     const float across = glsl::implicit_tension(len, rest, k, false);
-                    iso += across;
-                    nn.add_outer(glsl::implicit_block_along(k, kd_h, across), n);
+                    if (kBlocks) {
+                        iso += across;
+                        nn.add_outer(glsl::implicit_block_along(k, kd_h, across), n);
+                    }
+                    if (kFrames)
+                        for (int row = 0; row < 4; ++row) frames.at(s, row)[i] = row < 3 ? n[row] : across;
                 }
             });
             r -= (di - glm::vec3(target[i])) * (inv_h2 / wi);

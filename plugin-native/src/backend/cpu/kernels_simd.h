@@ -150,11 +150,13 @@ inline void constraint_iteration_simd(const SubstepContext& c, const float* coef
 /// scalar kernel's order, then per particle its inertia, r.p and block inverse as the scalar kernel
 /// does them: the same bits. col_k: per slot (column-major) its spring's stiffness, 0 where inactive
 /// or padding; a spring a lane does not have adds exactly 0 to its sums (a sum that starts at +0
-/// never becomes -0, so adding +-0 leaves it as it is).
-template <bool kBlocks = false>
+/// never becomes -0, so adding +-0 leaves it as it is). kFrames: also the springs' SpringFrames (in
+/// the lanes of a particle's padding slots too, where nothing reads them).
+template <bool kBlocks = false, bool kFrames = false>
 inline double implicit_residual_simd(const SubstepContext& c, const float* col_k, const Particle* disp,
                                      const Particle* target, const Particle* start, const Particle* p,
-                                     Particle* residual, uint32_t begin, uint32_t end, SymMat3* block_inv = nullptr) {
+                                     Particle* residual, uint32_t begin, uint32_t end,
+                                     SymMat3* block_inv = nullptr, const SpringFrames& frames = {}) {
     double rp = 0;
     uint32_t i = begin;
 #if DRAPE_SIMD
@@ -184,7 +186,7 @@ inline double implicit_residual_simd(const SubstepContext& c, const float* col_k
             std::memcpy(&rest, c.col_rest + base, sizeof rest);
             std::memcpy(&k, col_k + base, sizeof k);
             const I4 on = k > zero;
-        const V3 dj = simd::gather(disp, j);
+            const V3 dj = simd::gather(disp, j);
             const V3 sj = simd::gather(start, j);
             const V3 dij{di.x - dj.x, di.y - dj.y, di.z - dj.z};
             const V3 d{(si.x - sj.x) + dij.x, (si.y - sj.y) + dij.y, (si.z - sj.z) + dij.z};
@@ -196,19 +198,26 @@ inline double implicit_residual_simd(const SubstepContext& c, const float* col_k
             r.x += f * n.x;
             r.y += f * n.y;
             r.z += f * n.z;
-            if (kBlocks) {
+            if (kBlocks || kFrames) {
                 // glsl::implicit_tension (clamped), implicit_block_along, SymMat3::add_outer
                 const F4 t = one - rest / len;
                 const F4 across = len > zero ? k * (zero < t ? t : zero) : zero;
-                iso += across;  // 0 where k is
-                const F4 along = F4(I4(k + kd_h - across) & on);
-                const V3 a{along * n.x, along * n.y, along * n.z};
-                diag.x += a.x * n.x;
-                diag.y += a.y * n.y;
-                diag.z += a.z * n.z;
-                off.x += a.x * n.y;
-                off.y += a.x * n.z;
-                off.z += a.y * n.z;
+                if (kFrames) {
+                    const F4 rows[4] = {n.x, n.y, n.z, across};
+                    for (uint32_t row = 0; row < 4; ++row)
+                        std::memcpy(frames.at(s, row) + i, &rows[row], sizeof(F4));
+                }
+                if (kBlocks) {
+                    iso += across;  // 0 where k is
+                    const F4 along = F4(I4(k + kd_h - across) & on);
+                    const V3 a{along * n.x, along * n.y, along * n.z};
+                    diag.x += a.x * n.x;
+                    diag.y += a.y * n.y;
+                    diag.z += a.z * n.z;
+                    off.x += a.x * n.y;
+                    off.y += a.x * n.z;
+                    off.z += a.y * n.z;
+                }
             }
         }
         for (int l = 0; l < 4; ++l) {
@@ -230,7 +239,9 @@ inline double implicit_residual_simd(const SubstepContext& c, const float* col_k
     }
 #endif
     // The rest one by one, each particle's r.p added in order as the scalar kernel adds it.
-    for (; i < end; ++i) rp += implicit_residual<kBlocks>(c, disp, target, start, p, residual, i, i + 1, block_inv);
+    for (; i < end; ++i)
+        rp += implicit_residual<kBlocks, kFrames>(c, disp, target, start, p, residual, i, i + 1, block_inv,
+                                                  frames);
     return rp;
 }
 
