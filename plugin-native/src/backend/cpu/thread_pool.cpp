@@ -18,7 +18,7 @@ constexpr int kSpinRounds = 2000;
 constexpr int kYieldRounds = 200;
 }  // namespace
 
-ThreadPool::ThreadPool(uint32_t threads) {
+ThreadPool::ThreadPool(uint32_t threads) : chunk_(threads) {
     for (uint32_t i = 1; i < threads; ++i) workers_.emplace_back([this, i] { worker_main(i); });
 }
 
@@ -26,7 +26,7 @@ ThreadPool::~ThreadPool() {
     {
         std::lock_guard<std::mutex> lock(mutex_);
         stop_ = true;
-        generation_.fetch_add(1);
+        generation_.fetch_add(1);  // its chunks stay unclaimable: they hold the generation before
     }
     wake_.notify_all();
     for (std::thread& t : workers_) t.join();
@@ -35,18 +35,34 @@ ThreadPool::~ThreadPool() {
 void ThreadPool::run(JobFn fn, void* ctx) {
     job_ = fn;
     job_ctx_ = ctx;
-    pending_.store(uint32_t(workers_.size()));
-    generation_.fetch_add(1);  // publishes job_ (seq_cst)
+    done_.store(0, std::memory_order_relaxed);
+    const uint32_t gen = generation_.fetch_add(1) + 1;  // publishes job_ and done_ (seq_cst)
     if (sleepers_.load() > 0) {
         std::lock_guard<std::mutex> lock(mutex_);
         wake_.notify_all();
     }
-    fn(ctx, 0);
-    for (int spins = 0; pending_.load(std::memory_order_acquire) != 0; ++spins) {
+    take_chunks(gen, 0);
+    for (int spins = 0; done_.load(std::memory_order_acquire) != size(); ++spins) {
         if (spins < kSpinRounds)
             DRAPE_CPU_RELAX();
         else
             std::this_thread::yield();
+    }
+}
+
+void ThreadPool::take_chunks(uint32_t gen, uint32_t own) {
+    // Each chunk is claimed once per job by moving its generation from the previous job's to this
+    // one's: the thread's own chunk first (the same data as in the last pass, still in its cache),
+    // then any left, so a thread the OS has not run yet does not hold up the others.
+    const uint32_t n = size();
+    for (uint32_t k = 0; k < n; ++k) {
+        const uint32_t c = own + k < n ? own + k : own + k - n;
+        uint32_t expected = gen - 1;
+        if (chunk_[c].load(std::memory_order_relaxed) != expected ||
+            !chunk_[c].compare_exchange_strong(expected, gen, std::memory_order_acquire))
+            continue;
+        job_(job_ctx_, c);
+        done_.fetch_add(1, std::memory_order_release);
     }
 }
 
@@ -70,8 +86,7 @@ void ThreadPool::worker_main(uint32_t index) {
         }
         if (stop_.load()) return;
         seen = gen;
-        job_(job_ctx_, index);
-        pending_.fetch_sub(1, std::memory_order_release);
+        take_chunks(gen, index);
     }
 }
 

@@ -1,7 +1,10 @@
 // Persistent worker pool for CPU_THREADED. Workers spin briefly between the many short passes
 // of a step (a step is tens of barriers), then sleep on a condition variable when idle, so an
 // idle world costs no CPU. The paper woke four workers through a mutex per step; here a pass
-// costs one atomic increment to start and one to finish.
+// costs one atomic increment to start, one claim per chunk and one increment per chunk to finish.
+// A pass is size() chunks; each thread takes its own chunk, then any not yet taken, so a worker
+// that the OS has not run yet (a loaded machine, a phone's big.LITTLE cores) delays nobody: the
+// others take its chunk. Which thread runs a chunk never changes what the chunk computes.
 #pragma once
 
 #include <atomic>
@@ -27,8 +30,8 @@ public:
 
     uint32_t size() const { return uint32_t(workers_.size()) + 1; }
 
-    /// Runs fn(begin, end) over [0, count) split into size() contiguous ranges, one per thread;
-    /// returns when all are done. The split depends only on count and size().
+    /// Runs fn(begin, end) over [0, count) split into size() contiguous ranges (chunks); returns
+    /// when all are done. The split depends only on count and size().
     template <class Fn>
     void parallel_for(uint32_t count, Fn&& fn) {
         const uint32_t n = size();
@@ -43,7 +46,9 @@ public:
         run(&invoke<decltype(job)>, &job);
     }
 
-    /// Runs fn(thread_index) once on every thread (0 = caller).
+    /// Runs fn(k) once for each chunk k in [0, size()), each on whichever thread takes it (chunk k
+    /// usually on thread k, 0 = caller); returns when all are done. fn must not depend on which
+    /// thread runs it.
     template <class Fn>
     void run_on_all(Fn&& fn) {
         run(&invoke<Fn>, &fn);
@@ -56,13 +61,16 @@ private:
         (*static_cast<F*>(f))(t);
     }
     void run(JobFn fn, void* ctx);
+    /// Claims and runs the chunks of job gen still free, chunk own first.
+    void take_chunks(uint32_t gen, uint32_t own);
     void worker_main(uint32_t index);
 
     std::vector<std::thread> workers_;
     JobFn job_ = nullptr;
     void* job_ctx_ = nullptr;
-    std::atomic<uint32_t> generation_{0};
-    std::atomic<uint32_t> pending_{0};
+    std::atomic<uint32_t> generation_{0};  ///< of the last job published
+    std::vector<std::atomic<uint32_t>> chunk_;  ///< per chunk: the generation of the last job that claimed it
+    std::atomic<uint32_t> done_{0};        ///< chunks of the current job finished
     std::atomic<uint32_t> sleepers_{0};
     std::atomic<bool> stop_{false};
     std::mutex mutex_;
