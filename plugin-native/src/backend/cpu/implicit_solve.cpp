@@ -375,6 +375,11 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
     // whole budget (falling: the bench's falling sheet went from 0.09-0.11 of its size away from
     // MASS_SPRING to 0.13-0.17 with them), nor at rest (one iteration, so no cost).
     with_levels_ = with_blocks_ && levels_fresh_;
+    // Such a solve's second iteration also keeps the coarse space and levels as they are, up to
+    // kReuseSolves solves after their assembly: a fine cloth at rest takes two iterations (its
+    // first step's release, rounding noise that grows with the particle count, passes the
+    // tolerance at 129^2), and assembling them was a quarter of its step.
+    const bool reuse = with_levels_ && reuses_ < kReuseSolves;
     // Preconditioned nonlinear conjugate gradients: the first direction is z = P^-1 r, then
     // Polak-Ribiere (clamped at 0, which restarts on z), each with the step length of one Newton
     // step along the direction, alpha = r.p / p.Hp (Shewchuk 1994, "An introduction to the
@@ -395,7 +400,7 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         // Not converged in one iteration, so in motion: from here on the preconditioner adds the
         // coarse space and levels (coarse_space.h), assembled at this iterate from the springs' frames
         // that its residual passes write; a cloth at rest never pays for them.
-        const bool assemble = it == 1 && with_blocks_;
+        const bool second = it == 1 && with_blocks_, assemble = second && !reuse;
         double rp_new = residual(first ? nullptr : p_.data(), first && with_blocks_, assemble);
         bool restart = first;
         if (!first && rp_prev + rp_new < 0) {
@@ -410,9 +415,15 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         if (assemble) {
             over_items(pool, coarse_.patch_count(),
                        [&](uint32_t p) { coarse_.assemble(c, start, iterate, frames, p); });
-            with_coarse_ = coarse_.factor();
+            coarse_ok_ = coarse_.factor();
             over_items(pool, levels_.node_count(), [&](uint32_t a) { levels_.assemble_node(c, iterate, frames, a); });
             with_levels_ = levels_.factor(parallel(pool));
+            reuses_ = 0;
+        } else if (second) {
+            ++reuses_;
+        }
+        if (second) {
+            with_coarse_ = coarse_ok_;
             restart = true;
         }
         const Dots dots = precondition(r_.data(), r_prev_.data(), first ? p_.data() : z_.data(), pool);

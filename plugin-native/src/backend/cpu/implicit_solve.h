@@ -170,6 +170,9 @@ class ImplicitSolve {
     CoarseLevels levels_;
     bool with_levels_ = false;          ///< this solve's preconditioner adds the coarse levels' correction
     bool levels_fresh_ = false;         ///< the next solve may start with levels_ (see solve)
+    bool coarse_ok_ = false;            ///< coarse_ as last assembled is positive definite
+    static constexpr uint32_t kReuseSolves = 8;  ///< solves that may reuse coarse_ and levels_ (see solve)
+    uint32_t reuses_ = 0;               ///< solves that reused them since they were assembled
     std::vector<uint32_t> in_contact_;       ///< particles with a contact normal in this solve
     const glm::vec3* normal_ = nullptr;  ///< this solve's contact normals, null if none
 };

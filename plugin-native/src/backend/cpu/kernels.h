@@ -82,10 +82,15 @@ inline void for_active_slots(const SubstepContext& c, uint32_t i, Fn&& fn) {
     }
 }
 
-/// for_active_slots without the slot: fn(j, rest, k).
+/// for_active_slots without the slot: fn(j, rest, k) (its own loop: through for_active_slots the
+/// curvature pass took 0.3 % more instructions).
 template <class Fn>
 inline void for_active_springs(const SubstepContext& c, uint32_t i, Fn&& fn) {
-    for_active_slots(c, i, [&](uint32_t, uint32_t j, float rest, float k) { fn(j, rest, k); });
+    const size_t row = size_t(i) * c.slots;
+    for (uint32_t s = 0; s < c.nbr_count[i]; ++s) {
+        const size_t slot = row + s;
+        if (active_slot(c, slot)) fn(c.nbr_index[slot], c.nbr_rest[slot], c.groups.stiffness[c.nbr_group[slot]]);
+    }
 }
 
 /// IMPLICIT: per slot, its spring as the last residual pass that wrote them saw it at its iterate:
