@@ -7,7 +7,9 @@
 //
 // Timings are wall-clock medians over repeated steps of one run on a shared machine; they are
 // numbers to compare within one run, never assertions.
+#include <dirent.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -26,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "backend/cpu/thread_pool.h"  // the threads part's calibration only: the same pool as the library's
 #include "drape/drape.h"
 #include "reference.h"
 
@@ -496,32 +499,252 @@ void run_throughput(const Options& o) {
     g_progress.finish();
 }
 
+// Two threads against one on a shared VM: interleaved rounds (one thread, then two, then the other
+// way round), the ratio taken per round, so that a burst of load or a slower hour falls on both
+// sides of it; beside each round, what each thread did meanwhile (Linux /proc), so a round in which
+// a thread was descheduled shows as such.
+
+/// CPU time of the calling thread, ms: on the CPU backend (a one-thread world) the work of one
+/// core, whatever else loads the machine.
+double thread_cpu_ms() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+/// Linux thread ids of this process.
+std::vector<long> task_ids() {
+    std::vector<long> out;
+    if (DIR* d = opendir("/proc/self/task")) {
+        while (dirent* e = readdir(d))
+            if (e->d_name[0] != '.') out.push_back(std::atol(e->d_name));
+        closedir(d);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+/// A thread's time on a CPU and its time runnable but waiting for one, ms (/proc/<tid>/schedstat;
+/// 0 where the kernel does not keep them).
+struct SchedMs {
+    double run = 0, wait = 0;
+};
+SchedMs sched_ms(long tid) {
+    SchedMs s;
+    std::ifstream f("/proc/self/task/" + std::to_string(tid) + "/schedstat");
+    double run_ns = 0, wait_ns = 0;
+    if (f >> run_ns >> wait_ns) s.run = run_ns * 1e-6, s.wait = wait_ns * 1e-6;
+    return s;
+}
+
+/// The whole machine's steal time, ms: what the hypervisor gave other guests while this one's
+/// vCPUs wanted to run (/proc/stat, all CPUs summed; 10 ms ticks).
+double steal_ms() {
+    std::ifstream f("/proc/stat");
+    std::string cpu;
+    double v[8] = {};
+    f >> cpu;
+    for (double& x : v) f >> x;
+    return v[7] * 1e3 / double(sysconf(_SC_CLK_TCK));
+}
+
+/// One round of a timing: its wall time and, over it, the calling thread's CPU time
+/// (CLOCK_THREAD_CPUTIME_ID) and wait for a CPU, the timed pool's workers' CPU time and wait
+/// (summed over them; a worker spins between passes, so its CPU time counts its waiting for the
+/// caller too), and the machine's steal. All ms.
+struct Round {
+    double wall = 0, caller_cpu = 0, caller_wait = 0, worker_cpu = 0, worker_wait = 0, steal = 0;
+};
+template <class Fn>
+Round timed_round(const std::vector<long>& workers, Fn&& fn) {
+    const long self = long(syscall(SYS_gettid));
+    auto workers_ms = [&] {
+        SchedMs sum;
+        for (long t : workers) {
+            const SchedMs s = sched_ms(t);
+            sum.run += s.run, sum.wait += s.wait;
+        }
+        return sum;
+    };
+    const SchedMs w0 = workers_ms(), s0 = sched_ms(self);
+    const double c0 = thread_cpu_ms(), st0 = steal_ms();
+    const auto t0 = Clock::now();
+    fn();
+    Round r;
+    r.wall = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    r.caller_cpu = thread_cpu_ms() - c0;
+    r.steal = steal_ms() - st0;
+    const SchedMs w1 = workers_ms(), s1 = sched_ms(self);
+    r.caller_wait = s1.wait - s0.wait;
+    r.worker_cpu = w1.run - w0.run;
+    r.worker_wait = w1.wait - w0.wait;
+    return r;
+}
+
+/// Quantile q of v (linear between order statistics).
+double quantile(std::vector<double> v, double q) {
+    if (v.empty()) return NAN;
+    std::sort(v.begin(), v.end());
+    const double at = q * double(v.size() - 1);
+    const size_t i = size_t(at);
+    return i + 1 < v.size() ? v[i] + (at - double(i)) * (v[i + 1] - v[i]) : v[i];
+}
+
+/// The per-round ratios of one thread's wall time to several threads', as the threads CSVs give them:
+/// median, quartiles, min, max.
+std::string ratio_summary(const std::vector<double>& one, const std::vector<double>& many) {
+    std::vector<double> r;
+    for (size_t k = 0; k < one.size() && k < many.size(); ++k) r.push_back(one[k] / many[k]);
+    return fmt("%.3f", median(r)) + "," + fmt("%.3f", quantile(r, 0.25)) + "," + fmt("%.3f", quantile(r, 0.75)) +
+           "," + fmt("%.3f", quantile(r, 0)) + "," + fmt("%.3f", quantile(r, 1));
+}
+
+/// One side of an interleaved timing: what it runs per round, the pool's worker threads, its rounds.
+struct Side {
+    std::string scene, backend;
+    uint32_t threads = 1;
+    std::function<void()> round;
+    std::vector<long> workers;
+    std::vector<Round> rounds;
+};
+
+/// Runs the sides' rounds interleaved, in turn forwards and backwards (so neither side always
+/// follows the other), then writes each side's rounds to rounds_csv and its summary to csv, with the
+/// per-round speed-up against the first side (one thread).
+void interleave(std::vector<Side>& sides, int rounds, Csv& csv, Csv& rounds_csv, const std::string& prefix) {
+    for (int k = 0; k < rounds; ++k)
+        for (size_t i = 0; i < sides.size(); ++i) {
+            Side& s = sides[k % 2 ? sides.size() - 1 - i : i];
+            s.rounds.push_back(timed_round(s.workers, s.round));
+        }
+    std::vector<double> one;
+    for (const Round& r : sides[0].rounds) one.push_back(r.wall);
+    for (const Side& s : sides) {
+        std::vector<double> wall;
+        double caller_cpu = 0, worker_cpu = 0, wait = 0, steal = 0, total = 0;
+        for (size_t k = 0; k < s.rounds.size(); ++k) {
+            const Round& r = s.rounds[k];
+            wall.push_back(r.wall);
+            total += r.wall, caller_cpu += r.caller_cpu, worker_cpu += r.worker_cpu;
+            wait += r.caller_wait + r.worker_wait, steal += r.steal;
+            rounds_csv.row("%s,%s,%s,%u,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f", prefix.c_str(), s.scene.c_str(),
+                           s.backend.c_str(), s.threads, k, r.wall, one[k] / r.wall, r.caller_cpu, r.caller_wait,
+                           r.worker_cpu, r.worker_wait, r.steal);
+        }
+        csv.row("%s,%s,%s,%u,%zu,%.4f,%s,%.3f,%.3f,%.4f,%.4f", prefix.c_str(), s.scene.c_str(), s.backend.c_str(),
+                s.threads, s.rounds.size(), median(wall), ratio_summary(one, wall).c_str(), caller_cpu / total,
+                worker_cpu / total, wait / double(s.rounds.size()), steal / double(s.rounds.size()));
+    }
+}
+
+/// Calibration: the same pool (thread_pool.h) on work with no shared writes (each chunk iterates
+/// its own items and writes one sum to its own cache line), in passes about as long as the cloth's
+/// (short) and 40x longer (long). Its speed-up is what this machine gives two threads at best, with
+/// the pool's barriers (short) and without them (long), in the same run as the cloth's.
+struct Calibration {
+    explicit Calibration(uint32_t threads) : pool(threads), sums(threads * 16) {}
+    /// `passes` passes over `items` items.
+    void run(uint32_t items, int passes) {
+        const uint32_t n = pool.size();
+        for (int p = 0; p < passes; ++p)
+            pool.run_on_all([&](uint32_t t) {
+                float acc = 0;
+                for (uint32_t i = items * t / n; i < items * (t + 1) / n; ++i) {
+                    float x = float(i);
+                    for (int k = 0; k < 64; ++k) x = x * 0.999f + 0.5f;  // a dependent chain: compute only
+                    acc += x;
+                }
+                sums[t * 16] = acc;  // 16 floats apart: its own cache line
+            });
+    }
+    drape::ThreadPool pool;
+    std::vector<float> sums;
+};
+
 void run_threads(const Options& o) {
     const std::vector<uint32_t> sizes =
         o.quick ? std::vector<uint32_t>{32} : std::vector<uint32_t>{64, 128, 256};
-    const uint32_t counts[] = {1, 2, 3, 4};
     // The default model (IMPLICIT: the "two threads >= 1.8x one") and XPBD.
     const uint32_t models[] = {DRAPE_MODEL_IMPLICIT, DRAPE_MODEL_XPBD};
+    const int rounds = o.quick ? 3 : 15;
     Csv csv(o.out + "/threads.csv",
-            "size,vertices,model,backend,threads,ms_median,vertex_iter_per_s,speedup_vs_cpu");
-    g_progress.start("threads", int(sizes.size() * 5 * std::size(models)));
+            "part,scene,backend,threads,rounds,wall_ms_median,speedup_median,speedup_q1,speedup_q3,speedup_min,"
+            "speedup_max,caller_cpu_share,worker_cpu_share,wait_ms_per_round,steal_ms_per_round");
+    Csv rounds_csv(o.out + "/threads_rounds.csv",
+                   "part,scene,backend,threads,round,wall_ms,speedup,caller_cpu_ms,caller_wait_ms,worker_cpu_ms,"
+                   "worker_wait_ms,steal_ms");
+    g_progress.start("threads", int(2 + sizes.size() * std::size(models)));
+    // The pool alone: one thread (a pool of 1 runs every chunk on the caller) and o.threads.
+    for (const char* length : {"short", "long"}) {
+        std::vector<std::unique_ptr<Calibration>> pools;
+        std::vector<Side> sides;
+        for (uint32_t t : {1u, o.threads}) {
+            const std::vector<long> before = task_ids();
+            pools.push_back(std::make_unique<Calibration>(t));
+            Side s;
+            s.scene = std::string("calibration_") + length;
+            s.backend = "pool";
+            s.threads = t;
+            for (long id : task_ids())
+                if (!std::binary_search(before.begin(), before.end(), id)) s.workers.push_back(id);
+            sides.push_back(std::move(s));
+        }
+        // Items per pass: about 50 us of one thread (short: a cloth pass at 64^2-128^2), or 2 ms.
+        Calibration& one = *pools[0];
+        const double t0 = thread_cpu_ms();
+        one.run(1 << 16, 4);
+        const double ms_per_item = std::max(1e-9, (thread_cpu_ms() - t0) / (4.0 * (1 << 16)));
+        const bool short_passes = length[0] == 's';
+        const uint32_t items = uint32_t(std::max(64.0, (short_passes ? 0.05 : 2.0) / ms_per_item));
+        const int passes = short_passes ? (o.quick ? 100 : 1000) : (o.quick ? 3 : 25);  // ~50 ms a round
+        for (size_t i = 0; i < sides.size(); ++i) {
+            Calibration* c = pools[i].get();
+            sides[i].round = [c, items, passes] { c->run(items, passes); };
+        }
+        interleave(sides, rounds, csv, rounds_csv, "calibration");
+        g_progress.tick(std::string("calibration ") + length);
+    }
+    // The falling cloth (two top corners) on the CPU backend (one thread), CPU_THREADED with one
+    // thread (the same code path as with several) and with o.threads; all take the same steps (the
+    // same bits), so a round is the same work on each.
     for (uint32_t n : sizes)
         for (uint32_t model : models) {
-            double base_ms = NAN;
-            for (int k = -1; k < 4; ++k) {
+            std::vector<std::unique_ptr<Sim>> sims;
+            std::vector<Side> sides;
+            const std::pair<uint32_t, uint32_t> runs[] = {{DRAPE_BACKEND_CPU, 1u},
+                                                          {DRAPE_BACKEND_CPU_THREADED, 1u},
+                                                          {DRAPE_BACKEND_CPU_THREADED, o.threads}};
+            for (auto [backend, threads] : runs) {
                 GridSpec gs;
                 gs.cols = gs.rows = n;
-                gs.backend = k < 0 ? DRAPE_BACKEND_CPU : DRAPE_BACKEND_CPU_THREADED;
-                gs.threads = k < 0 ? 1 : counts[k];
-                auto sim = make_grid(gs);
-                sim->set_params(params_for(model));
-                Timing t = o.quick ? time_cloth(*sim, 0.1, 1.0, 5, 2) : time_cloth(*sim, 0.6, 4.0, 9, 3);
-                if (k < 0) base_ms = t.ms_median;
-                csv.row("%u,%u,%s,%s,%u,%.4f,%.4g,%.3f", n, sim->vertices, model_name(model),
-                        backend_name(gs.backend), gs.threads, t.ms_median, t.vit_per_s, base_ms / t.ms_median);
-                g_progress.tick(std::to_string(n) + "^2 " + model_name(model) + " " + backend_name(gs.backend) +
-                                " x" + std::to_string(gs.threads));
+                gs.backend = backend;
+                gs.threads = threads;
+                const std::vector<long> before = task_ids();
+                sims.push_back(make_grid(gs));
+                sims.back()->set_params(params_for(model));
+                Side s;
+                s.scene = std::to_string(n) + "^2 " + model_name(model);
+                s.backend = backend_name(backend);
+                s.threads = threads;
+                for (long id : task_ids())
+                    if (!std::binary_search(before.begin(), before.end(), id)) s.workers.push_back(id);
+                sides.push_back(std::move(s));
             }
+            // Three steps of warm-up each, then steps per round: about 50 ms of one thread.
+            const double t0 = thread_cpu_ms();
+            for (auto& s : sims)
+                for (int k = 0; k < 3; ++k) drape_cloth_step(s->cloth, 1.0f / 60);
+            const int reps = std::max(1, std::min(50, int(50.0 / ((thread_cpu_ms() - t0) / 9.0))));
+            for (size_t i = 0; i < sides.size(); ++i) {
+                Sim* sim = sims[i].get();
+                sides[i].round = [sim, reps] {
+                    for (int k = 0; k < reps; ++k) drape_cloth_step(sim->cloth, 1.0f / 60);
+                };
+            }
+            interleave(sides, rounds, csv, rounds_csv, "cloth");
+            if (sims[0]->positions() != sims[2]->positions())
+                std::fprintf(stderr, "threads: %u^2 %s: CPU_THREADED differs from CPU\n", n, model_name(model));
+            g_progress.tick(std::to_string(n) + "^2 " + model_name(model));
         }
     g_progress.finish();
 }
@@ -563,14 +786,6 @@ std::vector<Config> precision_configs(const Options& o, bool chain) {
 // point, and the lowest point's error over the hanging length (the metric of the Jolt 5.5 figures
 // that plot.py sets beside the curtain's).
 double max_distance(const std::vector<float>& x, const std::vector<double>& xr);
-
-/// CPU time of the calling thread, ms: the rest scenes run on the CPU backend in a one-thread
-/// world, so this is the work of one core, whatever else loads the machine.
-double thread_cpu_ms() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
 
 /// The settings of the rest scenes: the library's defaults as they are (model, budget, tethers),
 /// then without tethers XPBD at its automatic budget and finer, MASS_SPRING at its stability
@@ -686,7 +901,7 @@ void run_rest(const Options& o) {
             "scene,size,model,setting,substeps,iterations,max_stretch,is_default,cpu_ms_median,wall_ms_"
             "median,rounds,"
             "vertex_error,lowest_error,length_error,max_strain,ref_max_strain,ok,threads,threaded_wall_ms_"
-            "median,threaded_same");
+            "median,threaded_same,speedup_median,speedup_q1,speedup_q3,speedup_min,speedup_max");
     const int steps = o.quick ? 180 : 600, rounds = o.quick ? 3 : 5;
     g_progress.start("rest", rest_runs(o));
     for (const char* scene_name : {"curtain", "sheet"}) {
@@ -749,21 +964,29 @@ void run_rest(const Options& o) {
                                 model_name(rc.c.model) + (r.at_rest ? " to rest" : " (timing only)"));
                 runs.push_back(std::move(r));
             }
+            // One thread, then the twin, in odd rounds the other way round (neither always follows
+            // the other); the speed-up is taken per round (threads.csv's way).
             for (int round = 0; round < rounds; ++round)
                 for (Run& r : runs) {
-                    const double c0 = thread_cpu_ms();
-                    const auto w0 = Clock::now();
-                    for (int k = 0; k < r.reps; ++k)
-                        if (drape_cloth_step(r.sim->cloth, 1.0f / 60) != DRAPE_OK) r.ok = false;
-                    r.cpu_ms.push_back((thread_cpu_ms() - c0) / r.reps);
-                    r.wall_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - w0).count() /
-                                        r.reps);
-                    if (!r.threaded) continue;
-                    const auto t0 = Clock::now();
-                    for (int k = 0; k < r.reps; ++k)
-                        if (drape_cloth_step(r.threaded->cloth, 1.0f / 60) != DRAPE_OK) r.ok = false;
-                    r.threaded_wall_ms.push_back(
-                        std::chrono::duration<double, std::milli>(Clock::now() - t0).count() / r.reps);
+                    auto one = [&] {
+                        const double c0 = thread_cpu_ms();
+                        const auto w0 = Clock::now();
+                        for (int k = 0; k < r.reps; ++k)
+                            if (drape_cloth_step(r.sim->cloth, 1.0f / 60) != DRAPE_OK) r.ok = false;
+                        r.cpu_ms.push_back((thread_cpu_ms() - c0) / r.reps);
+                        r.wall_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - w0).count() /
+                                            r.reps);
+                    };
+                    auto twin = [&] {
+                        const auto t0 = Clock::now();
+                        for (int k = 0; k < r.reps; ++k)
+                            if (drape_cloth_step(r.threaded->cloth, 1.0f / 60) != DRAPE_OK) r.ok = false;
+                        r.threaded_wall_ms.push_back(
+                            std::chrono::duration<double, std::milli>(Clock::now() - t0).count() / r.reps);
+                    };
+                    if (r.threaded && round % 2) twin();
+                    one();
+                    if (r.threaded && round % 2 == 0) twin();
                 }
             for (const Run& r : runs) {
                 const std::vector<float> xs = r.sim->positions();
@@ -781,12 +1004,13 @@ void run_rest(const Options& o) {
                     : c.model == DRAPE_MODEL_MASS_SPRING
                         ? std::to_string(c.substeps)
                         : std::to_string(c.substeps) + "x" + std::to_string(c.iterations);
-                csv.row("%s,%u,%s,%s,%u,%u,%g,%d,%.4f,%.4f,%d,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%u,%.4f,%s",
+                csv.row("%s,%u,%s,%s,%u,%u,%g,%d,%.4f,%.4f,%d,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%u,%.4f,%s,%s",
                         scene_name, n, model_name(c.model), setting.c_str(), ss.substeps, ss.iterations,
                         double(r.rc.max_stretch), int(r.is_default), median(r.cpu_ms), median(r.wall_ms),
                         rounds, e_vertex, e_low, e_length, ss.max_strain, scene.ref_strain, int(r.ok),
                         r.threaded ? o.threads : 1u, r.threaded ? median(r.threaded_wall_ms) : NAN,
-                        r.threaded ? (r.threaded_same ? "1" : "0") : "");
+                        r.threaded ? (r.threaded_same ? "1" : "0") : "",
+                        r.threaded ? ratio_summary(r.wall_ms, r.threaded_wall_ms).c_str() : ",,,,");
             }
             coarser = scene;
         }
