@@ -263,7 +263,11 @@ CpuCloth::VerifyPartial CpuCloth::verify() {
             if (!(std::isfinite(x[i].x) && std::isfinite(x[i].y) && std::isfinite(x[i].z))) p.finite = false;
         partials_[t] = p;
     };
-    const uint32_t parts = backend_ == DRAPE_BACKEND_CPU_THREADED ? world_.pool().size() : 1;
+    // Split like for_particles: a smaller cloth on the caller alone (waking the workers each step
+    // for it cost more than the pass).
+    const uint32_t parts = backend_ == DRAPE_BACKEND_CPU_THREADED && n >= ThreadPool::kMinParallelCount
+                               ? world_.pool().size()
+                               : 1;
     if (parts == 1) {
         verify_range(0, 0, n);
     } else {
