@@ -520,9 +520,9 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
 template <class Fn>
 void ImplicitSolve::over_items(ThreadPool* pool, uint32_t count, Fn&& fn) {
     if (ThreadPool* threads = parallel(pool)) {
-        const uint32_t step = threads->size();
+        const uint32_t parts = threads->size();
         threads->run_on_all([&](uint32_t t) {
-            for (uint32_t p = t; p < count; p += step) fn(p);
+            for (uint32_t p = count * t / parts; p < count * (t + 1) / parts; ++p) fn(p);
         });
     } else {
         for (uint32_t p = 0; p < count; ++p) fn(p);

@@ -108,8 +108,10 @@ class ImplicitSolve {
     template <class Fn>
     double over_blocks(ThreadPool* pool, Fn&& fn);
 
-    /// fn(k) for k in [0, count) (the coarse space's patches, the coarse levels' level-1 nodes), k on
-    /// thread k mod size (or all on the caller).
+    /// fn(k) for k in [0, count) (the coarse space's patches, the coarse levels' level-1 nodes) in
+    /// contiguous ranges, range t on thread t (or all on the caller). Both are numbered in the order of
+    /// their first particle, so a thread takes about the particles it has in the particle passes (one
+    /// item in two on each thread had each read the other core's lines of r and of the iterate).
     template <class Fn>
     void over_items(ThreadPool* pool, uint32_t count, Fn&& fn);
 
