@@ -65,6 +65,7 @@ void CpuCloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& k
     for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_predict(c, cur, disp, target, iterate, b, e); });
     for (uint32_t k : kinematic_) target[k] = iterate[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
     if (!(std::fabs(implicit_.h() / last_h_ - 1.0f) < kImplicitRefactor)) factor_implicit(last_h_);  // dt changed a lot
+    if (fresh_) implicit_.state_set();
     const uint32_t taken = implicit_.solve(c, cur, target, iterate, iterations_, kImplicitTolerance,
                                            backend_ == DRAPE_BACKEND_CPU_THREADED ? &world_.pool() : nullptr,
                                            contact_fresh_ ? contact_normal_.data() : nullptr);

@@ -337,6 +337,8 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     sep_sum_.resize(size_t(sep_stride_) * kParts);
     for (std::vector<Particle>* v : {&r_, &r_prev_, &z_, &p_}) v->assign(n, Particle(0.0f));
     block_inv_.assign(n, kernels::SymMat3());
+    carry_.assign(n, glm::vec3(0.0f));
+    carried_.assign(n, glm::vec3(0.0f));
     col_k_.assign(size_t(n) * nb.slots, 0.0f);
     for (uint32_t i = 0; i < n; ++i)
         for (uint32_t s = 0; s < nb.count[i]; ++s) {
@@ -368,7 +370,7 @@ double ImplicitSolve::over_blocks(ThreadPool* pool, Fn&& fn) {
     return sum;
 }
 
-uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* start, const Particle* target,
+uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* start, Particle* target,
                               Particle* iterate, uint32_t max_iterations, float tolerance, ThreadPool* pool,
                               const glm::vec3* contact_normal) {
     in_contact_.clear();
@@ -410,12 +412,18 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
     // gravity's h^2 g). The step's release is that of one Newton step along p, alpha r.p / 2,
     // measured with the spring Hessian: r.z alone would rate a mode that A makes stiffer than it
     // is (a taut sheet's sag) by A's stiffness and stop long before that mode settles.
+    // The same pass adds to target and first iterate what the last commit's rounding took from each
+    // position (see the end).
     const float inv_h2 = 1.0f / (c.h * c.h);
     const double load = over_blocks(pool, [&](uint32_t b, uint32_t e) {
         double sum = 0;
         for (uint32_t i = b; i < e; ++i)
-            if (target[i].w != 0.0f)
+            if (target[i].w != 0.0f) {
+                const Particle shift(carry_[i] - c.h_ratio * carried_[i], 0.0f);
+                target[i] += shift;
+                iterate[i] += shift;
                 sum += double(glm::dot(glm::vec3(target[i]), glm::vec3(target[i])) * (inv_h2 / target[i].w));
+            }
         return sum;
     });
     const double converged_release = double(tolerance) * double(tolerance) * load;
@@ -428,17 +436,20 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
     const bool plain_step = max_iterations == 1 && h_ < c.h * (1.0f + kImplicitRefactor);
     with_blocks_ = !plain_step;  // D comes with the first residual
     with_coarse_ = false;
-    // The coarse levels as the previous solve assembled them, when it took a second iteration but not
-    // its whole budget: a cloth in mild motion (a taut sheet ringing about its rest state) has barely
-    // moved since, and its waves get their share from the first step. Not after a solve that used the
-    // whole budget (falling: the bench's falling sheet went from 0.09-0.11 of its size away from
-    // MASS_SPRING to 0.13-0.17 with them), nor at rest (one iteration, so no cost).
+    // The coarse levels as an earlier solve assembled them, when the previous solve used them and
+    // not its whole budget: a cloth in mild motion or settled (a taut sheet ringing about its rest
+    // state) has barely moved since, and its waves get their share from the first step, also in the
+    // solves that stop after it (without them there, the 65^2 sheet at the user's drag rang at 2.7e-4
+    // of its displacement at 3-4 s and 8.9e-4 at 4.5-5 s). Not after a solve that used the whole
+    // budget (falling: the bench's falling sheet went from 0.09-0.11 of its size away from
+    // MASS_SPRING to 0.13-0.17 with them).
     with_levels_ = with_blocks_ && levels_fresh_;
-    // Such a solve's second iteration also keeps the coarse space and levels as they are, up to
-    // kReuseSolves solves after their assembly: a fine cloth at rest takes two iterations (its
-    // first step's release, rounding noise that grows with the particle count, passes the
-    // tolerance at 129^2), and assembling them was a quarter of its step.
+    // A second iteration then also keeps the coarse space and levels as they are, up to
+    // kReuseSolves solves after their assembly (solves that start with them, one iteration or
+    // more: a cloth pulled after a while at rest gets them anew): assembling them was a quarter of a
+    // step in mild motion.
     const bool reuse = with_levels_ && reuses_ < kReuseSolves;
+    if (reuse) ++reuses_;
     // Preconditioned nonlinear conjugate gradients: the first direction is z = P^-1 r, then
     // Polak-Ribiere (clamped at 0, which restarts on z), each with the step length of one Newton
     // step along the direction, alpha = r.p / p.Hp (Shewchuk 1994, "An introduction to the
@@ -478,8 +489,6 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
             over_items(pool, levels_.node_count(), [&](uint32_t a) { levels_.assemble_node(c, iterate, frames, a); });
             with_levels_ = levels_.factor(parallel(pool));
             reuses_ = 0;
-        } else if (second) {
-            ++reuses_;
         }
         if (second) {
             with_coarse_ = coarse_ok_;
@@ -513,7 +522,26 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         rz_prev = dots.rz;
         rp_prev = rp;
     }
-    levels_fresh_ = with_levels_ && it > 1 && it < max_iterations;
+    levels_fresh_ = with_levels_ && it < max_iterations;
+    // The caller commits the positions start + d in floats, which rounds each coordinate by up to half
+    // a float step (6e-8 m at 1 m): the springs' lengths change by about that, and their forces by k
+    // times it, noise that the next solve's first step spent itself undoing (at rest 0.9-1.5 times
+    // the tolerance's release at 129^2, growing with the particle count, so every solve took a
+    // second iteration there). What the rounding takes (exactly: Knuth's TwoSum) is given back to
+    // the next solve's target and first iterate, so that its springs see the unrounded positions
+    // (the release at rest at 129^2 fell to 0.009 of the tolerance's), less its share of the
+    // displacement that the caller keeps as the velocity (h_ratio times the carry this solve
+    // received). What a later stage (collision, tethers) or a setter does to a position leaves the
+    // carry stale by at most this half float step, as much as the rounding it replaces.
+    over_blocks(pool, [&](uint32_t b, uint32_t e) {
+        for (uint32_t i = b; i < e; ++i) {
+            if (target[i].w == 0.0f) continue;
+            const glm::vec3 a(start[i]), d(iterate[i]), sum = a + d, d_part = sum - a;
+            carried_[i] = carry_[i];
+            carry_[i] = (a - (sum - d_part)) + (d - d_part);
+        }
+        return 0.0;
+    });
     return it;
 }
 

@@ -24,8 +24,8 @@
 //   from MASS_SPRING over the size 0.035 / 0.075, was 0.43 / 0.83; 33^2: 0.13 / 0.14, was 0.87 /
 //   1.25), for ~20 % more work a step in motion.
 // - P_1 V P_1^T: the coarse levels (coarse_space.h, CoarseLevels), translations of small cells with
-//   one V-cycle on H, assembled in the second iteration, and from the first in a solve after one in
-//   mild motion (see solve; never at rest): a taut sheet's smooth out-of-plane waves,
+//   one V-cycle on H, assembled in the second iteration, and from the first in a solve after one
+//   that used them and not its whole budget (see solve): a taut sheet's smooth out-of-plane waves,
 //   which the patches are too coarse to show, cost nearly their mass alone in H while D charges
 //   them the tension and A the stiffness; with a few iterations they kept ringing at the user's
 //   default drag (65^2 sheet: 4.6e-4 of the displacement after 5.5 s, exact implicit Euler 1.2e-6).
@@ -42,6 +42,7 @@
 // count, so CPU_THREADED gives the same bits as CPU.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
@@ -72,6 +73,13 @@ class ImplicitSolve {
     bool inputs_changed(const drape_params& params, const Particle* x, uint32_t n);
     /// Forgets the inputs, so that the next inputs_changed is true.
     void clear() { key_.clear(); }
+    /// Positions or velocities were set from outside: the rounding carried over (see solve) and the
+    /// coarse levels kept from earlier solves belong to the old state.
+    void state_set() {
+        std::fill(carry_.begin(), carry_.end(), glm::vec3(0.0f));
+        std::fill(carried_.begin(), carried_.end(), glm::vec3(0.0f));
+        levels_fresh_ = false;
+    }
 
     /// Builds and factors A for substep h; particles with x[i].w == 0 are kinematic. Allocates.
     void factor(const Topology& topo, const drape_params& params, const Particle* x, float h);
@@ -89,7 +97,7 @@ class ImplicitSolve {
     /// neighbours and slide it along the surface, instead of pressing it into the collider for the
     /// collision pass to undo, which held a frictionless cloth on a box edge. Frictional contacts are
     /// left to the collision pass, whose friction grows with that push. Does not allocate.
-    uint32_t solve(const kernels::SubstepContext& c, const Particle* start, const Particle* target, Particle* iterate,
+    uint32_t solve(const kernels::SubstepContext& c, const Particle* start, Particle* target, Particle* iterate,
                    uint32_t max_iterations, float tolerance, ThreadPool* pool, const glm::vec3* contact_normal);
 
   private:
@@ -160,6 +168,8 @@ class ImplicitSolve {
     // residual and direction.
     std::vector<Particle> r_, r_prev_, z_, p_;
     std::vector<kernels::SymMat3> block_inv_;  ///< per particle the inverse of its block of H (D)
+    std::vector<glm::vec3> carry_;  ///< per particle what the last commit's rounding took (see solve's end)
+    std::vector<glm::vec3> carried_;  ///< carry_ as the last solve received it (in its displacements)
     /// Per slot of the neighbour table, column-major like SubstepContext::col_index, its spring's
     /// stiffness (N/m; 0 where inactive or padding): the residual's springs in SIMD lanes.
     std::vector<float> col_k_;
@@ -174,7 +184,7 @@ class ImplicitSolve {
     bool levels_fresh_ = false;         ///< the next solve may start with levels_ (see solve)
     bool coarse_ok_ = false;            ///< coarse_ as last assembled is positive definite
     static constexpr uint32_t kReuseSolves = 8;  ///< solves that may reuse coarse_ and levels_ (see solve)
-    uint32_t reuses_ = 0;               ///< solves that reused them since they were assembled
+    uint32_t reuses_ = 0;               ///< solves that started with them since they were assembled
     std::vector<uint32_t> in_contact_;       ///< particles with a contact normal in this solve
     const glm::vec3* normal_ = nullptr;  ///< this solve's contact normals, null if none
 };
