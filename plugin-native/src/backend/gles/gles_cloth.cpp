@@ -705,7 +705,7 @@ void GlesCloth::begin_passes() {
     used_program_ = 0;
     bound_vao_ = 0;
     unpack_buffer_ = 0;
-    feedback_[0] = feedback_[1] = 0;  // every pass sequence ends with unbind_outputs
+    feedback_[0] = feedback_[1] = {};  // every pass sequence ends with unbind_outputs
     coarse_written_.buffer = 0;       // and the coarse rows are copied before it ends
 }
 
@@ -799,26 +799,24 @@ void GlesCloth::bind_outputs(int out, int out2) {
     // were measured wrong on softpipe: 1.3e-3 m off after one step).
     const size_t n = topo_.particle_count;
     // Separate attribs: one state record each; interleaved: one displacement-iterate record.
-    const GLuint buffer[2] = {gl_.buffers[out], out2 >= 0 ? gl_.buffers[out2] : 0};
-    const GLsizeiptr size[2] = {GLsizeiptr(n * (out2 >= 0 ? 1 : record_) * sizeof(Particle)),
-                                out2 >= 0 ? GLsizeiptr(n * sizeof(Particle)) : 0};
-    for (int k = 0; k < 2; ++k) {
-        if (feedback_[k] == buffer[k] && feedback_size_[k] == size[k]) continue;
-        if (buffer[k])
-            glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, GLuint(k), buffer[k], 0, size[k]);
-        else
-            glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, GLuint(k), 0);
-        feedback_[k] = buffer[k];
-        feedback_size_[k] = size[k];
+    bind_output(0, gl_.buffers[out], 0, GLsizeiptr(n * (out2 >= 0 ? 1 : record_) * sizeof(Particle)));
+    bind_output(1, out2 >= 0 ? gl_.buffers[out2] : 0, 0, GLsizeiptr(n * sizeof(Particle)));
+}
+
+void GlesCloth::bind_output(int k, GLuint buffer, GLintptr offset, GLsizeiptr size) {
+    Feedback& f = feedback_[k];
+    if (!buffer) {
+        if (f.buffer) glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, GLuint(k), 0);
+        f = {};
+        return;
     }
+    if (f.buffer == buffer && f.offset == offset && f.size == size) return;
+    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, GLuint(k), buffer, offset, size);
+    f = {buffer, offset, size};
 }
 
 void GlesCloth::unbind_outputs() {
-    for (int k = 0; k < 2; ++k)
-        if (feedback_[k]) {
-            glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, GLuint(k), 0);
-            feedback_[k] = 0;
-        }
+    for (int k = 0; k < 2; ++k) bind_output(k, 0);
 }
 
 void GlesCloth::draw(GLuint vao, int out, int out2, int read_x, int read_aux) {
@@ -1127,13 +1125,8 @@ void GlesCloth::coarse_pass(Program& p, int x, int aux, const glm::vec4& offsets
     // last values does not matter). Outputs bound before the inputs are read (bind_outputs).
     const GLuint vec = gl_.coarse_vec[coarse_flip_];
     coarse_flip_ ^= 1;
-    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, vec, GLintptr(size_t(write) * 16), GLsizeiptr(size_t(count) * 16));
-    feedback_[0] = vec;
-    feedback_size_[0] = 0;  // a section: bound again by the next pass whatever it binds
-    if (feedback_[1]) {
-        glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, 0);
-        feedback_[1] = 0;
-    }
+    bind_output(0, vec, GLintptr(size_t(write) * 16), GLsizeiptr(size_t(count) * 16));
+    bind_output(1, 0);
     if (x >= 0) refresh(x);
     if (aux >= 0) refresh(aux);
     flush_coarse();

@@ -219,6 +219,9 @@ private:
     /// that a separate unbind after each draw would cost. Index 1 is unbound when the pass has one
     /// output (its last buffer may be an input).
     void bind_outputs(int out, int out2);
+    /// Binds `size` bytes of `buffer` from `offset` to transform-feedback index k (buffer 0:
+    /// unbinds it), unless that is bound already: bind_outputs' two indices, a coarse pass's section.
+    void bind_output(int k, GLuint buffer, GLintptr offset = 0, GLsizeiptr size = 0);
     /// Takes every buffer off the transform-feedback bindings: after the passes, before other GL
     /// work reads them.
     void unbind_outputs();
@@ -328,8 +331,11 @@ private:
     GLuint used_program_ = 0;      // within begin_passes .. end of step
     int active_unit_ = -1;
     GLuint unpack_buffer_ = 0;     // bound to GL_PIXEL_UNPACK_BUFFER (a texture's source), 0: none
-    GLuint feedback_[2] = {};      // bound to transform-feedback indices 0, 1 by the passes, 0: none
-    GLsizeiptr feedback_size_[2] = {};
+    struct Feedback {
+        GLuint buffer = 0;  // 0: none
+        GLintptr offset = 0;
+        GLsizeiptr size = 0;
+    } feedback_[2];  // bound to transform-feedback indices 0, 1 by the passes (bind_output)
     struct {
         GLuint buffer = 0;  // 0: nothing to copy
         uint32_t write = 0, count = 0;
