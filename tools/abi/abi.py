@@ -145,13 +145,14 @@ STRUCTS = [
                field("air_drag", "f32", "a += air_drag*(wind - v)", unit="1/s", default=0.1, range=(0, 1000)),
                field("substeps", "u32",
                      "per step; 0 = automatic (MASS_SPRING: from the stability bound, see drape_estimate_stability; "
-                     "PBD, XPBD: 16 \"small steps\"; IMPLICIT: 2, on GLES one per 1/960 s of the step; on CPU backends more "
+                     "PBD, XPBD: 16 \"small steps\"; IMPLICIT: 2, on GLES one per 1/960 s of the step (up to 2.5 times as many "
+                     "for structural springs much stiffer than shear ones); on CPU backends more "
                      "while a collider near the cloth moves over half its size per substep, or with self-collision a "
                      "particle over a quarter of the thickness). Automatic or given, "
                      "at most DRAPE_MAX_SUBSTEPS",
                      default=0, range=(0, "DRAPE_MAX_SUBSTEPS")),
                field("iterations", "u32", "solver iterations per substep (PBD, XPBD, IMPLICIT; IMPLICIT on the CPU: at most, "
-                     "fewer once converged); 0 = automatic (IMPLICIT: 4, on GLES 3; PBD and XPBD: 1)", default=0, range=(0, "DRAPE_MAX_ITERATIONS")),
+                     "fewer once converged); 0 = automatic (IMPLICIT: 4, on GLES 2; PBD and XPBD: 1)", default=0, range=(0, "DRAPE_MAX_ITERATIONS")),
                field("max_stretch", "f32",
                      "tethers (long-range attachments, Kim et al. 2012): every particle stays within "
                      "(1 + max_stretch) x its rest distance along the cloth to the nearest pinned particle. "

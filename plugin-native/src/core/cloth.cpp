@@ -179,7 +179,7 @@ void Cloth::set_velocities(const float* xyz) {
     fresh_ = true;
 }
 
-uint32_t Cloth::substeps_for(float dt) const { return drape::substeps_for(params_, backend_, ms_h_max_, dt); }
+uint32_t Cloth::substeps_for(float dt) const { return drape::substeps_for(params_, backend_, ms_h_max_, topo_.spring_count, dt); }
 
 uint32_t Cloth::iterations_for() const {
     if (params_.iterations > 0) return params_.iterations;

@@ -36,13 +36,20 @@ float mass_spring_max_substep(float inverse_mass, float stiffness_sum, float dam
     return a > 0 ? (-b + std::sqrt(b * b + 4.0f * s * s * a)) / a : 2.0f * s * s / std::max(b, 1e-30f);
 }
 
-uint32_t substeps_for(const drape_params& p, drape_backend backend, float h_max, float dt) {
+uint32_t substeps_for(const drape_params& p, drape_backend backend, float h_max,
+                      const uint32_t spring_count[DRAPE_GROUP_COUNT], float dt) {
     if (p.substeps > 0) return p.substeps;
     const bool gles_implicit = p.model == DRAPE_MODEL_IMPLICIT && backend == DRAPE_BACKEND_GLES;
     if (p.model == DRAPE_MODEL_IMPLICIT && !gles_implicit) return kAutoSubstepsImplicit;
     if (p.model != DRAPE_MODEL_MASS_SPRING && !gles_implicit) return kAutoSubstepsPositionBased;
+    float factor = 1;  // GLES IMPLICIT: kMaxStiffSubstepFactorGles
+    if (gles_implicit && spring_count[DRAPE_GROUP_SHEAR] > 0 && p.stiffness[DRAPE_GROUP_STRUCTURAL] > 0) {
+        const float shear = p.stiffness[DRAPE_GROUP_SHEAR];
+        const float ratio = shear > 0 ? p.stiffness[DRAPE_GROUP_STRUCTURAL] / shear : INFINITY;
+        factor = std::min(kMaxStiffSubstepFactorGles, std::max(1.0f, std::sqrt(std::sqrt(0.5f * ratio))));
+    }
     // 1e-3: 1/60 s over 1/960 s is 16, not 17 by rounding.
-    const float s = gles_implicit ? std::ceil(dt / kMaxAutoSubstepImplicitGles - 1e-3f) : std::ceil(dt / h_max);
+    const float s = gles_implicit ? std::ceil(dt * factor / kMaxAutoSubstepImplicitGles - 1e-3f) : std::ceil(dt / h_max);
     return s < 1 ? 1u : s > float(kMaxSubsteps) ? kMaxSubsteps : uint32_t(s);
 }
 
@@ -64,7 +71,7 @@ StabilityEstimate estimate_stability(const Topology& topo, const drape_params& p
         }
     }
     StabilityEstimate e{};
-    e.substeps = substeps_for(p, backend, h_max, dt);
+    e.substeps = substeps_for(p, backend, h_max, topo.spring_count, dt);
     const bool bounded = p.model == DRAPE_MODEL_MASS_SPRING && std::isfinite(h_max);
     const double needed = bounded ? std::ceil(double(dt) / double(h_max)) : 1.0;
     e.stable_substeps = needed >= 4294967295.0 ? UINT32_MAX : std::max(1u, uint32_t(needed));

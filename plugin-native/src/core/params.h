@@ -53,8 +53,25 @@ constexpr float kImplicitTolerance = 5e-4f;
 /// 16 x 3 0.12 m (XPBD 16 x 1: 0.15 m), 32 x 1 worse than 16 x 1. With it (its first version), at
 /// 2e3 / 1e5 N/m structural: 16 x 3 0.029 / 0.18 m, 16 x 2 0.027 / 0.24 m, 8 x 3 0.070 / 0.39 m,
 /// 4 x 6 0.10 / 0.46 m. Long frame steps keep the substep and cost the same per simulated second.
-constexpr uint32_t kAutoIterationsImplicitGles = 3;
+/// With the coarse levels as they are now (rms from CPU IMPLICIT 32 x 64, llvmpipe), two passes beat
+/// three: 2e3 N/m 16 x 2 0.023 m, 16 x 3 0.025 m; 1e5 N/m 40 x 2 0.054 m, 40 x 3 0.058 m, 48 x 2
+/// 0.041 m, 48 x 3 0.051 m (the 65^2 curtain: 5.3e-5 of its largest displacement after 2 s at
+/// 16 x 2, 4.6e-5 at 16 x 3; R13's bound is 5e-3).
+constexpr uint32_t kAutoIterationsImplicitGles = 2;
 constexpr float kMaxAutoSubstepImplicitGles = 1.0f / 960.0f;
+/// GLES IMPLICIT on cloth much stiffer along its grid lines than across them (structural over
+/// shear stiffness r above the default's 2): the soft modes are then in-plane shear and swing, which
+/// block Jacobi sees as stiff (a particle's block holds the structural springs) and the constant
+/// coarse matrices charge at the structural stiffness (gles_coarse.h), so each substep's passes
+/// reach less of its answer. More, shorter substeps (the mass term m/h^2 grows against the
+/// springs) recover it: the automatic substep is kMaxAutoSubstepImplicitGles / (r / 2)^(1/4), at
+/// most kMaxStiffSubstepFactorGles times shorter (the cost grows with the substeps). 33^2 sheet
+/// dropped from two corners, 1e5 / 1e3 N/m (r = 100: 40 substeps at 60 Hz), rms from CPU IMPLICIT
+/// 32 x 64 over the first second: 16 x 2 0.21 m, 24 x 2 0.13 m, 32 x 2 0.075 m, 40 x 2 0.054 m,
+/// 48 x 2 0.041 m, 64 x 2 0.033 m (XPBD 16 x 1: 0.15 m); 1e4 / 1e3 N/m (r = 10: 24 substeps): 16 x 3
+/// 0.045 m, 24 x 2 0.031 m (XPBD 0.14 m). Triangle meshes have no shear group (their edges carry the
+/// shear): no change there.
+constexpr float kMaxStiffSubstepFactorGles = 2.5f;
 /// IMPLICIT: relative change of the substep beyond which its matrix is refactored (any matrix
 /// gives the exact rest state; a stale one only converges more slowly).
 constexpr float kImplicitRefactor = 0.25f;
@@ -81,8 +98,10 @@ float mass_spring_max_substep(float inverse_mass, float stiffness_sum, float dam
 /// Substeps a step of dt uses on `backend`: params.substeps if set; else MASS_SPRING: ceil(dt / h_max)
 /// (h_max from mass_spring_max_substep, the tightest particle), PBD/XPBD:
 /// kAutoSubstepsPositionBased, IMPLICIT: kAutoSubstepsImplicit on the CPU, substeps of at most
-/// kMaxAutoSubstepImplicitGles on GLES; always in [1, kMaxSubsteps].
-uint32_t substeps_for(const drape_params& p, drape_backend backend, float h_max, float dt);
+/// kMaxAutoSubstepImplicitGles (shorter for stiff structural springs, see kMaxStiffSubstepFactorGles;
+/// spring_count: the topology's per group) on GLES; always in [1, kMaxSubsteps].
+uint32_t substeps_for(const drape_params& p, drape_backend backend, float h_max,
+                      const uint32_t spring_count[DRAPE_GROUP_COUNT], float dt);
 
 struct Topology;
 struct StabilityEstimate {

@@ -97,12 +97,13 @@ namespace Drape.Core
         public float AirDrag;
         /// <summary>Per step; 0 = automatic (MASS_SPRING: from the stability bound, see
         /// drape_estimate_stability; PBD, XPBD: 16 "small steps"; IMPLICIT: 2, on GLES one per 1/960 s of the
-        /// step; on CPU backends more while a collider near the cloth moves over half its size per substep,
-        /// or with self-collision a particle over a quarter of the thickness). Automatic or given, at most
+        /// step (up to 2.5 times as many for structural springs much stiffer than shear ones); on CPU
+        /// backends more while a collider near the cloth moves over half its size per substep, or with
+        /// self-collision a particle over a quarter of the thickness). Automatic or given, at most
         /// DRAPE_MAX_SUBSTEPS. Range [0, DRAPE_MAX_SUBSTEPS]. Default 0.</summary>
         public uint Substeps;
         /// <summary>Solver iterations per substep (PBD, XPBD, IMPLICIT; IMPLICIT on the CPU: at most, fewer
-        /// once converged); 0 = automatic (IMPLICIT: 4, on GLES 3; PBD and XPBD: 1). Range [0,
+        /// once converged); 0 = automatic (IMPLICIT: 4, on GLES 2; PBD and XPBD: 1). Range [0,
         /// DRAPE_MAX_ITERATIONS]. Default 0.</summary>
         public uint Iterations;
         /// <summary>Tethers (long-range attachments, Kim et al. 2012): every particle stays within (1 +
