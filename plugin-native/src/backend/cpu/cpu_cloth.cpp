@@ -264,18 +264,13 @@ CpuCloth::VerifyPartial CpuCloth::verify() {
             if (!(std::isfinite(x[i].x) && std::isfinite(x[i].y) && std::isfinite(x[i].z))) p.finite = false;
         partials_[t] = p;
     };
-    // Split like for_particles: a smaller cloth on the caller alone (waking the workers each step
-    // for it cost more than the pass).
-    const uint32_t parts = backend_ == DRAPE_BACKEND_CPU_THREADED && n >= ThreadPool::kMinParallelCount
-                               ? world_.pool().size()
-                               : 1;
-    if (parts == 1) {
+    // Split like for_particles (a smaller cloth on the caller alone), one partial per chunk.
+    const bool threaded = backend_ == DRAPE_BACKEND_CPU_THREADED;
+    const uint32_t parts = threaded ? world_.pool().chunks(n) : 1;
+    if (threaded)
+        world_.pool().parallel_chunks(n, verify_range);
+    else
         verify_range(0, 0, n);
-    } else {
-        world_.pool().run_on_all([&](uint32_t t) {
-            verify_range(t, uint32_t(uint64_t(n) * t / parts), uint32_t(uint64_t(n) * (t + 1) / parts));
-        });
-    }
     VerifyPartial total{true, false};
     for (uint32_t t = 0; t < parts; ++t) {
         total.finite = total.finite && partials_[t].finite;

@@ -30,20 +30,30 @@ public:
 
     uint32_t size() const { return uint32_t(workers_.size()) + 1; }
 
-    /// Runs fn(begin, end) over [0, count) split into size() contiguous ranges (chunks); returns
+    /// Chunks that parallel_chunks splits count items into: size(), or 1 (the caller alone) below
+    /// kMinParallelCount.
+    uint32_t chunks(uint32_t count) const { return count < kMinParallelCount ? 1u : size(); }
+
+    /// Runs fn(k, begin, end) for each of the chunks(count) contiguous ranges of [0, count); returns
     /// when all are done. The split depends only on count and size().
     template <class Fn>
-    void parallel_for(uint32_t count, Fn&& fn) {
-        const uint32_t n = size();
-        if (n == 1 || count < kMinParallelCount) {
-            fn(0u, count);
+    void parallel_chunks(uint32_t count, Fn&& fn) {
+        const uint32_t n = chunks(count);
+        if (n == 1) {
+            fn(0u, 0u, count);
             return;
         }
         auto job = [&](uint32_t t) {
             uint64_t b = uint64_t(count) * t / n, e = uint64_t(count) * (t + 1) / n;
-            fn(uint32_t(b), uint32_t(e));
+            fn(t, uint32_t(b), uint32_t(e));
         };
         run(&invoke<decltype(job)>, &job);
+    }
+
+    /// parallel_chunks without the chunk's index: fn(begin, end).
+    template <class Fn>
+    void parallel_for(uint32_t count, Fn&& fn) {
+        parallel_chunks(count, [&](uint32_t, uint32_t b, uint32_t e) { fn(b, e); });
     }
 
     /// Runs fn(k) once for each chunk k in [0, size()), each on whichever thread takes it (chunk k
