@@ -524,6 +524,15 @@ std::vector<long> task_ids() {
     return out;
 }
 
+/// Thread ids of this process that are not in `before` (task_ids() taken earlier): the workers of a
+/// pool created since.
+std::vector<long> new_task_ids(const std::vector<long>& before) {
+    std::vector<long> out;
+    for (long id : task_ids())
+        if (!std::binary_search(before.begin(), before.end(), id)) out.push_back(id);
+    return out;
+}
+
 /// A thread's time on a CPU and its time runnable but waiting for one, ms (/proc/<tid>/schedstat;
 /// 0 where the kernel does not keep them).
 struct SchedMs {
@@ -685,8 +694,7 @@ void run_threads(const Options& o) {
             s.scene = std::string("calibration_") + length;
             s.backend = "pool";
             s.threads = t;
-            for (long id : task_ids())
-                if (!std::binary_search(before.begin(), before.end(), id)) s.workers.push_back(id);
+            s.workers = new_task_ids(before);
             sides.push_back(std::move(s));
         }
         // Items per pass: about 50 us of one thread (short: a cloth pass at 64^2-128^2), or 2 ms.
@@ -726,8 +734,7 @@ void run_threads(const Options& o) {
                 s.scene = std::to_string(n) + "^2 " + model_name(model);
                 s.backend = backend_name(backend);
                 s.threads = threads;
-                for (long id : task_ids())
-                    if (!std::binary_search(before.begin(), before.end(), id)) s.workers.push_back(id);
+                s.workers = new_task_ids(before);
                 sides.push_back(std::move(s));
             }
             // Three steps of warm-up each, then steps per round: about 50 ms of one thread.

@@ -225,7 +225,7 @@ def threads(out, rows, rounds, meta, lines):
     for i, d in enumerate(data):
         ax.plot([i + 1] * len(d), d, ".", color="tab:blue", alpha=0.5, ms=4)
     ax.set_xticks(range(1, len(keys) + 1))
-    ax.set_xticklabels([f"{s}\n{'pool' if b == 'pool' else b} x{t}" for s, b, t in keys], rotation=60,
+    ax.set_xticklabels([f"{s}\n{b} x{t}" for s, b, t in keys], rotation=60,
                        fontsize=6, ha="right")
     ax.axhline(1.8, color="grey", lw=1, ls=":")
     ax.axhline(1.0, color="grey", lw=1)
