@@ -26,6 +26,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "backend/cpu/thread_pool.h"  // the threads part's calibration only: the same pool as the library's
@@ -534,15 +535,20 @@ std::vector<long> new_task_ids(const std::vector<long>& before) {
 }
 
 /// A thread's time on a CPU and its time runnable but waiting for one, ms (/proc/<tid>/schedstat;
-/// 0 where the kernel does not keep them).
+/// 0 where the kernel does not keep them), and how often it slept (its voluntary context switches,
+/// /proc/<tid>/status: a pool worker sleeps when a gap between passes outlasts its spinning).
 struct SchedMs {
-    double run = 0, wait = 0;
+    double run = 0, wait = 0, sleeps = 0;
 };
 SchedMs sched_ms(long tid) {
     SchedMs s;
-    std::ifstream f("/proc/self/task/" + std::to_string(tid) + "/schedstat");
+    const std::string dir = "/proc/self/task/" + std::to_string(tid);
+    std::ifstream f(dir + "/schedstat");
     double run_ns = 0, wait_ns = 0;
     if (f >> run_ns >> wait_ns) s.run = run_ns * 1e-6, s.wait = wait_ns * 1e-6;
+    std::ifstream status(dir + "/status");
+    for (std::string line; std::getline(status, line);)
+        if (line.rfind("voluntary_ctxt_switches:", 0) == 0) s.sleeps = std::atof(line.c_str() + 24);
     return s;
 }
 
@@ -560,9 +566,9 @@ double steal_ms() {
 /// One round of a timing: its wall time and, over it, the calling thread's CPU time
 /// (CLOCK_THREAD_CPUTIME_ID) and wait for a CPU, the timed pool's workers' CPU time and wait
 /// (summed over them; a worker spins between passes, so its CPU time counts its waiting for the
-/// caller too), and the machine's steal. All ms.
+/// caller too) and sleeps, and the machine's steal. All ms but the sleeps.
 struct Round {
-    double wall = 0, caller_cpu = 0, caller_wait = 0, worker_cpu = 0, worker_wait = 0, steal = 0;
+    double wall = 0, caller_cpu = 0, caller_wait = 0, worker_cpu = 0, worker_wait = 0, worker_sleeps = 0, steal = 0;
 };
 template <class Fn>
 Round timed_round(const std::vector<long>& workers, Fn&& fn) {
@@ -571,7 +577,7 @@ Round timed_round(const std::vector<long>& workers, Fn&& fn) {
         SchedMs sum;
         for (long t : workers) {
             const SchedMs s = sched_ms(t);
-            sum.run += s.run, sum.wait += s.wait;
+            sum.run += s.run, sum.wait += s.wait, sum.sleeps += s.sleeps;
         }
         return sum;
     };
@@ -587,6 +593,7 @@ Round timed_round(const std::vector<long>& workers, Fn&& fn) {
     r.caller_wait = s1.wait - s0.wait;
     r.worker_cpu = w1.run - w0.run;
     r.worker_wait = w1.wait - w0.wait;
+    r.worker_sleeps = w1.sleeps - w0.sleeps;
     return r;
 }
 
@@ -617,46 +624,62 @@ struct Side {
     std::vector<Round> rounds;
 };
 
-/// Runs the sides' rounds interleaved, in turn forwards and backwards (so neither side always
-/// follows the other), then writes each side's rounds to rounds_csv and its summary to csv, with the
-/// per-round speed-up against the first side (one thread).
-void interleave(std::vector<Side>& sides, int rounds, Csv& csv, Csv& rounds_csv, const std::string& prefix) {
+/// Runs the sides' rounds interleaved, in turn forwards and backwards, so neither side always
+/// follows the other and a burst of load falls on all of them.
+void run_rounds(std::vector<Side>& sides, int rounds) {
     for (int k = 0; k < rounds; ++k)
         for (size_t i = 0; i < sides.size(); ++i) {
             Side& s = sides[k % 2 ? sides.size() - 1 - i : i];
             s.rounds.push_back(timed_round(s.workers, s.round));
         }
+}
+
+/// run_rounds, then each side's rounds to rounds_csv and its summary to csv, with the per-round
+/// speed-up against the first side (one thread).
+void interleave(std::vector<Side>& sides, int rounds, Csv& csv, Csv& rounds_csv, const std::string& prefix) {
+    run_rounds(sides, rounds);
     std::vector<double> one;
     for (const Round& r : sides[0].rounds) one.push_back(r.wall);
     for (const Side& s : sides) {
         std::vector<double> wall;
-        double caller_cpu = 0, worker_cpu = 0, wait = 0, steal = 0, total = 0;
+        double caller_cpu = 0, worker_cpu = 0, wait = 0, sleeps = 0, steal = 0, total = 0;
         for (size_t k = 0; k < s.rounds.size(); ++k) {
             const Round& r = s.rounds[k];
             wall.push_back(r.wall);
             total += r.wall, caller_cpu += r.caller_cpu, worker_cpu += r.worker_cpu;
-            wait += r.caller_wait + r.worker_wait, steal += r.steal;
-            rounds_csv.row("%s,%s,%s,%u,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f", prefix.c_str(), s.scene.c_str(),
+            wait += r.caller_wait + r.worker_wait, sleeps += r.worker_sleeps, steal += r.steal;
+            rounds_csv.row("%s,%s,%s,%u,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.0f,%.4f", prefix.c_str(), s.scene.c_str(),
                            s.backend.c_str(), s.threads, k, r.wall, one[k] / r.wall, r.caller_cpu, r.caller_wait,
-                           r.worker_cpu, r.worker_wait, r.steal);
+                           r.worker_cpu, r.worker_wait, r.worker_sleeps, r.steal);
         }
-        csv.row("%s,%s,%s,%u,%zu,%.4f,%s,%.3f,%.3f,%.4f,%.4f", prefix.c_str(), s.scene.c_str(), s.backend.c_str(),
+        const double rounds = double(s.rounds.size());
+        csv.row("%s,%s,%s,%u,%zu,%.4f,%s,%.3f,%.3f,%.4f,%.1f,%.4f", prefix.c_str(), s.scene.c_str(), s.backend.c_str(),
                 s.threads, s.rounds.size(), median(wall), ratio_summary(one, wall).c_str(), caller_cpu / total,
-                worker_cpu / total, wait / double(s.rounds.size()), steal / double(s.rounds.size()));
+                worker_cpu / total, wait / rounds, sleeps / rounds, steal / rounds);
     }
 }
 
 /// Calibration: the same pool (thread_pool.h) on work with no shared writes (each chunk iterates
 /// its own items and writes one sum to its own cache line), in passes about as long as the cloth's
 /// (short) and 40x longer (long). Its speed-up is what this machine gives two threads at best, with
-/// the pool's barriers (short) and without them (long), in the same run as the cloth's.
+/// the pool's barriers (short) and without them (long), in the same run as the cloth's. Passes with
+/// no work (empty, 1000 a round), each chunk waiting until every chunk has started so that every
+/// thread takes part (with no work the caller would take them all): the pool's own cost per pass
+/// (the several threads' ms per round is us per pass; their "speed-up" means nothing).
 struct Calibration {
     explicit Calibration(uint32_t threads) : pool(threads), sums(threads * 16) {}
-    /// `passes` passes over `items` items.
+    /// `passes` passes over `items` items (0: empty passes).
     void run(uint32_t items, int passes) {
         const uint32_t n = pool.size();
-        for (int p = 0; p < passes; ++p)
+        for (int p = 0; p < passes; ++p) {
+            std::atomic<uint32_t> started{0};
             pool.run_on_all([&](uint32_t t) {
+                if (items == 0) {  // yields after a while: a thread spinning on the other's core would hold it off
+                    started.fetch_add(1);
+                    for (int spins = 0; started.load() < n; ++spins)
+                        if (spins > 1000) std::this_thread::yield();
+                    return;
+                }
                 float acc = 0;
                 for (uint32_t i = items * t / n; i < items * (t + 1) / n; ++i) {
                     float x = float(i);
@@ -665,6 +688,7 @@ struct Calibration {
                 }
                 sums[t * 16] = acc;  // 16 floats apart: its own cache line
             });
+        }
     }
     drape::ThreadPool pool;
     std::vector<float> sums;
@@ -678,13 +702,13 @@ void run_threads(const Options& o) {
     const int rounds = o.quick ? 3 : 15;
     Csv csv(o.out + "/threads.csv",
             "part,scene,backend,threads,rounds,wall_ms_median,speedup_median,speedup_q1,speedup_q3,speedup_min,"
-            "speedup_max,caller_cpu_share,worker_cpu_share,wait_ms_per_round,steal_ms_per_round");
+            "speedup_max,caller_cpu_share,worker_cpu_share,wait_ms_per_round,worker_sleeps_per_round,steal_ms_per_round");
     Csv rounds_csv(o.out + "/threads_rounds.csv",
                    "part,scene,backend,threads,round,wall_ms,speedup,caller_cpu_ms,caller_wait_ms,worker_cpu_ms,"
-                   "worker_wait_ms,steal_ms");
-    g_progress.start("threads", int(2 + sizes.size() * std::size(models)));
+                   "worker_wait_ms,worker_sleeps,steal_ms");
+    g_progress.start("threads", int(3 + sizes.size() * std::size(models)));
     // The pool alone: one thread (a pool of 1 runs every chunk on the caller) and o.threads.
-    for (const char* length : {"short", "long"}) {
+    for (const char* length : {"empty", "short", "long"}) {
         std::vector<std::unique_ptr<Calibration>> pools;
         std::vector<Side> sides;
         for (uint32_t t : {1u, o.threads}) {
@@ -702,9 +726,9 @@ void run_threads(const Options& o) {
         const double t0 = thread_cpu_ms();
         one.run(1 << 16, 4);
         const double ms_per_item = std::max(1e-9, (thread_cpu_ms() - t0) / (4.0 * (1 << 16)));
-        const bool short_passes = length[0] == 's';
-        const uint32_t items = uint32_t(std::max(64.0, (short_passes ? 0.05 : 2.0) / ms_per_item));
-        const int passes = short_passes ? (o.quick ? 100 : 1000) : (o.quick ? 3 : 25);  // ~50 ms a round
+        const bool empty = length[0] == 'e', short_passes = length[0] == 's';
+        const uint32_t items = empty ? 0 : uint32_t(std::max(64.0, (short_passes ? 0.05 : 2.0) / ms_per_item));
+        const int passes = empty ? 1000 : short_passes ? (o.quick ? 100 : 1000) : (o.quick ? 3 : 25);  // ~50 ms a round
         for (size_t i = 0; i < sides.size(); ++i) {
             Calibration* c = pools[i].get();
             sides[i].round = [c, items, passes] { c->run(items, passes); };
@@ -927,6 +951,7 @@ void run_rest(const Options& o) {
                 /// several threads). A twin started from sim's positions alone lost its velocity and
                 /// fresh-start state, and took more iterations than sim in the rounds.
                 std::unique_ptr<Sim> threaded;
+                std::vector<long> workers;  ///< the twin's pool's worker threads
                 bool threaded_same = false;  ///< the twin's positions equal sim's, bit for bit, at rest
                 bool ok = true;
                 int reps = 1;  ///< steps per round: about 50 ms of work, at least one
@@ -957,7 +982,9 @@ void run_rest(const Options& o) {
                     GridSpec tg = scene.grid;
                     tg.backend = DRAPE_BACKEND_CPU_THREADED;
                     tg.threads = o.threads;
+                    const std::vector<long> before = task_ids();
                     r.threaded = make_grid(tg);
+                    r.workers = new_task_ids(before);
                     r.threaded->set_inverse_masses(scene.w);
                     r.threaded->set_params(p);
                     for (int step = 0; step < to_rest; ++step)
@@ -971,30 +998,31 @@ void run_rest(const Options& o) {
                                 model_name(rc.c.model) + (r.at_rest ? " to rest" : " (timing only)"));
                 runs.push_back(std::move(r));
             }
-            // One thread, then the twin, in odd rounds the other way round (neither always follows
-            // the other); the speed-up is taken per round (threads.csv's way).
-            for (int round = 0; round < rounds; ++round)
-                for (Run& r : runs) {
-                    auto one = [&] {
-                        const double c0 = thread_cpu_ms();
-                        const auto w0 = Clock::now();
+            // One thread and the twin of each setting, interleaved (run_rounds); the speed-up is taken
+            // per round (threads.csv's way).
+            std::vector<Side> sides;
+            for (Run& r : runs)
+                for (Sim* sim : {r.sim.get(), r.threaded.get()}) {
+                    if (!sim) continue;
+                    Side side;
+                    side.workers = sim == r.threaded.get() ? r.workers : std::vector<long>{};
+                    side.round = [&r, sim] {
                         for (int k = 0; k < r.reps; ++k)
-                            if (drape_cloth_step(r.sim->cloth, 1.0f / 60) != DRAPE_OK) r.ok = false;
-                        r.cpu_ms.push_back((thread_cpu_ms() - c0) / r.reps);
-                        r.wall_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - w0).count() /
-                                            r.reps);
+                            if (drape_cloth_step(sim->cloth, 1.0f / 60) != DRAPE_OK) r.ok = false;
                     };
-                    auto twin = [&] {
-                        const auto t0 = Clock::now();
-                        for (int k = 0; k < r.reps; ++k)
-                            if (drape_cloth_step(r.threaded->cloth, 1.0f / 60) != DRAPE_OK) r.ok = false;
-                        r.threaded_wall_ms.push_back(
-                            std::chrono::duration<double, std::milli>(Clock::now() - t0).count() / r.reps);
-                    };
-                    if (r.threaded && round % 2) twin();
-                    one();
-                    if (r.threaded && round % 2 == 0) twin();
+                    sides.push_back(std::move(side));
                 }
+            run_rounds(sides, rounds);
+            for (size_t k = 0, side = 0; k < runs.size(); ++k) {
+                Run& r = runs[k];
+                for (const Round& round : sides[side].rounds) {
+                    r.cpu_ms.push_back(round.caller_cpu / r.reps);
+                    r.wall_ms.push_back(round.wall / r.reps);
+                }
+                if (r.threaded)
+                    for (const Round& round : sides[side + 1].rounds) r.threaded_wall_ms.push_back(round.wall / r.reps);
+                side += r.threaded ? 2 : 1;
+            }
             for (const Run& r : runs) {
                 const std::vector<float> xs = r.sim->positions();
                 const double low = xs[3 * scene.low_v + 1];

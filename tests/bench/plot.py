@@ -214,7 +214,9 @@ def threads(out, rows, rounds, meta, lines):
     machine's own ceiling (the pool on work with no shared writes) beside the cloth's."""
     if not rows:
         return
-    many = [r for r in rows if int(r["threads"]) > 1 or r["backend"] == "cpu_threaded"]
+    # calibration_empty times the pool's own cost per pass; its ratio is no speed-up
+    many = [r for r in rows if (int(r["threads"]) > 1 or r["backend"] == "cpu_threaded")
+            and r["scene"] != "calibration_empty"]
     keys = list(dict.fromkeys((r["scene"], r["backend"], r["threads"]) for r in many))
     by = defaultdict(list)
     for r in rounds:
@@ -242,20 +244,23 @@ def threads(out, rows, rounds, meta, lines):
                  "on several in the same rounds, one side first in even rounds and last in odd ones; the speed-up "
                  "is one thread's wall time over the other's, per round. Calibration: the library's thread pool on "
                  "a compute kernel with no shared writes, in passes of about 50 us (short, like the cloth's) and "
-                 "2 ms (long): what this machine gives two threads at best. Cloth: the falling sheet (two top "
+                 "2 ms (long): what this machine gives two threads at best; calibration_empty: 1000 passes with no "
+                 "work a round, so its several threads' ms per round are the pool's own cost per pass in us (its "
+                 "speed-up means nothing). Cloth: the falling sheet (two top "
                  "corners), the same steps on each side. CPU shares: CPU time / wall time over the rounds (the "
                  "workers spin between passes, so theirs includes waiting); wait: time runnable but not run "
-                 "(schedstat), steal: the machine's steal time (/proc/stat), per round.\n")
+                 "(schedstat); worker sleeps: the workers' voluntary context switches (a worker sleeps when a gap "
+                 "between passes outlasts its spinning); steal: the machine's steal time (/proc/stat), per round.\n")
     lines.append("| scene | backend | threads | rounds | wall ms/round (median) | speed-up median | quartiles | "
-                 "min-max | caller CPU share | workers' CPU share | wait ms/round | steal ms/round |")
-    lines.append("|" + "---|" * 12)
+                 "min-max | caller CPU share | workers' CPU share | wait ms/round | worker sleeps/round | steal ms/round |")
+    lines.append("|" + "---|" * 13)
     for r in rows:
         lines.append(f"| {r['scene']} | {r['backend']} | {r['threads']} | {r['rounds']} | "
                      f"{num(r['wall_ms_median']):.2f} | {num(r['speedup_median']):.2f} | "
                      f"{num(r['speedup_q1']):.2f}-{num(r['speedup_q3']):.2f} | "
                      f"{num(r['speedup_min']):.2f}-{num(r['speedup_max']):.2f} | {num(r['caller_cpu_share']):.2f} | "
                      f"{num(r['worker_cpu_share']):.2f} | {num(r['wait_ms_per_round']):.2f} | "
-                     f"{num(r['steal_ms_per_round']):.1f} |")
+                     f"{num(r['worker_sleeps_per_round']):.1f} | {num(r['steal_ms_per_round']):.1f} |")
     lines.append("")
 
 
