@@ -634,13 +634,31 @@ void run_rounds(std::vector<Side>& sides, int rounds) {
         }
 }
 
-/// run_rounds, then each side's rounds to rounds_csv and its summary to csv, with the per-round
-/// speed-up against the first side (one thread).
-void interleave(std::vector<Side>& sides, int rounds, Csv& csv, Csv& rounds_csv, const std::string& prefix) {
+/// Per-round ratios of a's wall time to b's.
+std::vector<double> round_ratios(const Side& a, const Side& b) {
+    std::vector<double> r;
+    for (size_t k = 0; k < a.rounds.size() && k < b.rounds.size(); ++k) r.push_back(a.rounds[k].wall / b.rounds[k].wall);
+    return r;
+}
+
+/// run_rounds, then the first `reported` sides' rounds to rounds_csv and their summaries to csv,
+/// with the per-round speed-up against the first side (one thread). Sides [reported, reported + 2),
+/// if there, are the short calibration on one thread and on several in the same rounds: the
+/// machine's two-thread ceiling at the time of each round (idle, one thread's calibration time moved
+/// by a fifth from round to round in one run, the two threads' did not), and each reported side
+/// with several threads gets its per-round speed-up over that round's ceiling.
+void interleave(std::vector<Side>& sides, size_t reported, int rounds, Csv& csv, Csv& rounds_csv,
+                const std::string& prefix) {
     run_rounds(sides, rounds);
     std::vector<double> one;
     for (const Round& r : sides[0].rounds) one.push_back(r.wall);
-    for (const Side& s : sides) {
+    const std::vector<double> ceiling =
+        sides.size() >= reported + 2 ? round_ratios(sides[reported], sides[reported + 1]) : std::vector<double>{};
+    for (size_t i = 0; i < reported; ++i) {
+        const Side& s = sides[i];
+        const std::vector<double> speedup = round_ratios(sides[0], s);
+        std::vector<double> over;
+        for (size_t k = 0; k < ceiling.size() && k < speedup.size(); ++k) over.push_back(speedup[k] / ceiling[k]);
         std::vector<double> wall;
         double caller_cpu = 0, worker_cpu = 0, wait = 0, sleeps = 0, steal = 0, total = 0;
         for (size_t k = 0; k < s.rounds.size(); ++k) {
@@ -648,14 +666,17 @@ void interleave(std::vector<Side>& sides, int rounds, Csv& csv, Csv& rounds_csv,
             wall.push_back(r.wall);
             total += r.wall, caller_cpu += r.caller_cpu, worker_cpu += r.worker_cpu;
             wait += r.caller_wait + r.worker_wait, sleeps += r.worker_sleeps, steal += r.steal;
-            rounds_csv.row("%s,%s,%s,%u,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.0f,%.4f", prefix.c_str(), s.scene.c_str(),
+            rounds_csv.row("%s,%s,%s,%u,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.0f,%.4f,%s", prefix.c_str(), s.scene.c_str(),
                            s.backend.c_str(), s.threads, k, r.wall, one[k] / r.wall, r.caller_cpu, r.caller_wait,
-                           r.worker_cpu, r.worker_wait, r.worker_sleeps, r.steal);
+                           r.worker_cpu, r.worker_wait, r.worker_sleeps, r.steal,
+                           k < ceiling.size() ? fmt("%.4f", ceiling[k]).c_str() : "");
         }
         const double rounds = double(s.rounds.size());
-        csv.row("%s,%s,%s,%u,%zu,%.4f,%s,%.3f,%.3f,%.4f,%.1f,%.4f", prefix.c_str(), s.scene.c_str(), s.backend.c_str(),
-                s.threads, s.rounds.size(), median(wall), ratio_summary(one, wall).c_str(), caller_cpu / total,
-                worker_cpu / total, wait / rounds, sleeps / rounds, steal / rounds);
+        const std::string vs_ceiling =
+            ceiling.empty() || s.threads == 1 ? "," : fmt("%.3f", median(ceiling)) + "," + fmt("%.3f", median(over));
+        csv.row("%s,%s,%s,%u,%zu,%.4f,%s,%s,%.3f,%.3f,%.4f,%.1f,%.4f", prefix.c_str(), s.scene.c_str(), s.backend.c_str(),
+                s.threads, s.rounds.size(), median(wall), ratio_summary(one, wall).c_str(), vs_ceiling.c_str(),
+                caller_cpu / total, worker_cpu / total, wait / rounds, sleeps / rounds, steal / rounds);
     }
 }
 
@@ -702,43 +723,49 @@ void run_threads(const Options& o) {
     const int rounds = o.quick ? 3 : 15;
     Csv csv(o.out + "/threads.csv",
             "part,scene,backend,threads,rounds,wall_ms_median,speedup_median,speedup_q1,speedup_q3,speedup_min,"
-            "speedup_max,caller_cpu_share,worker_cpu_share,wait_ms_per_round,worker_sleeps_per_round,steal_ms_per_round");
+            "speedup_max,ceiling_speedup_median,speedup_over_ceiling_median,caller_cpu_share,worker_cpu_share,"
+            "wait_ms_per_round,worker_sleeps_per_round,steal_ms_per_round");
     Csv rounds_csv(o.out + "/threads_rounds.csv",
                    "part,scene,backend,threads,round,wall_ms,speedup,caller_cpu_ms,caller_wait_ms,worker_cpu_ms,"
-                   "worker_wait_ms,worker_sleeps,steal_ms");
+                   "worker_wait_ms,worker_sleeps,steal_ms,ceiling_speedup");
     g_progress.start("threads", int(3 + sizes.size() * std::size(models)));
-    // The pool alone: one thread (a pool of 1 runs every chunk on the caller) and o.threads.
-    for (const char* length : {"empty", "short", "long"}) {
-        std::vector<std::unique_ptr<Calibration>> pools;
+    // The pool alone: one thread (a pool of 1 runs every chunk on the caller) and o.threads, as
+    // sides of a timing (`passes` passes over `items` items a round).
+    std::vector<std::unique_ptr<Calibration>> pools;
+    auto calibration_sides = [&](const std::string& scene, uint32_t items, int passes) {
         std::vector<Side> sides;
         for (uint32_t t : {1u, o.threads}) {
             const std::vector<long> before = task_ids();
             pools.push_back(std::make_unique<Calibration>(t));
             Side s;
-            s.scene = std::string("calibration_") + length;
+            s.scene = scene;
             s.backend = "pool";
             s.threads = t;
             s.workers = new_task_ids(before);
+            Calibration* c = pools.back().get();
+            s.round = [c, items, passes] { c->run(items, passes); };
             sides.push_back(std::move(s));
         }
-        // Items per pass: about 50 us of one thread (short: a cloth pass at 64^2-128^2), or 2 ms.
-        Calibration& one = *pools[0];
-        const double t0 = thread_cpu_ms();
-        one.run(1 << 16, 4);
-        const double ms_per_item = std::max(1e-9, (thread_cpu_ms() - t0) / (4.0 * (1 << 16)));
+        return sides;
+    };
+    // Items per pass: about 50 us of one thread (short: a cloth pass at 64^2-128^2), or 2 ms.
+    const double t0 = thread_cpu_ms();
+    Calibration(1).run(1 << 16, 4);
+    const double ms_per_item = std::max(1e-9, (thread_cpu_ms() - t0) / (4.0 * (1 << 16)));
+    const uint32_t short_items = uint32_t(std::max(64.0, 0.05 / ms_per_item));
+    for (const char* length : {"empty", "short", "long"}) {
         const bool empty = length[0] == 'e', short_passes = length[0] == 's';
-        const uint32_t items = empty ? 0 : uint32_t(std::max(64.0, (short_passes ? 0.05 : 2.0) / ms_per_item));
+        const uint32_t items = empty ? 0 : short_passes ? short_items : uint32_t(std::max(64.0, 2.0 / ms_per_item));
         const int passes = empty ? 1000 : short_passes ? (o.quick ? 100 : 1000) : (o.quick ? 3 : 25);  // ~50 ms a round
-        for (size_t i = 0; i < sides.size(); ++i) {
-            Calibration* c = pools[i].get();
-            sides[i].round = [c, items, passes] { c->run(items, passes); };
-        }
-        interleave(sides, rounds, csv, rounds_csv, "calibration");
+        std::vector<Side> sides = calibration_sides(std::string("calibration_") + length, items, passes);
+        interleave(sides, sides.size(), rounds, csv, rounds_csv, "calibration");
         g_progress.tick(std::string("calibration ") + length);
     }
     // The falling cloth (two top corners) on the CPU backend (one thread), CPU_THREADED with one
     // thread (the same code path as with several) and with o.threads; all take the same steps (the
-    // same bits), so a round is the same work on each.
+    // same bits), so a round is the same work on each. The short calibration in the same rounds
+    // (200 passes, ~10 ms of one thread) is each round's ceiling.
+    const std::vector<Side> ceiling = calibration_sides("ceiling", short_items, o.quick ? 20 : 200);
     for (uint32_t n : sizes)
         for (uint32_t model : models) {
             std::vector<std::unique_ptr<Sim>> sims;
@@ -772,7 +799,9 @@ void run_threads(const Options& o) {
                     for (int k = 0; k < reps; ++k) drape_cloth_step(sim->cloth, 1.0f / 60);
                 };
             }
-            interleave(sides, rounds, csv, rounds_csv, "cloth");
+            const size_t cloth_sides = sides.size();
+            sides.insert(sides.end(), ceiling.begin(), ceiling.end());
+            interleave(sides, cloth_sides, rounds, csv, rounds_csv, "cloth");
             if (sims[0]->positions() != sims[2]->positions())
                 std::fprintf(stderr, "threads: %u^2 %s: CPU_THREADED differs from CPU\n", n, model_name(model));
             g_progress.tick(std::to_string(n) + "^2 " + model_name(model));

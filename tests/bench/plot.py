@@ -247,18 +247,24 @@ def threads(out, rows, rounds, meta, lines):
                  "2 ms (long): what this machine gives two threads at best; calibration_empty: 1000 passes with no "
                  "work a round, so its several threads' ms per round are the pool's own cost per pass in us (its "
                  "speed-up means nothing). Cloth: the falling sheet (two top "
-                 "corners), the same steps on each side. CPU shares: CPU time / wall time over the rounds (the "
+                 "corners), the same steps on each side; ceiling: the short calibration timed in the same rounds "
+                 "(one thread's speed moves from round to round on a VM, even idle), and the cloth's per-round "
+                 "speed-up over that round's ceiling (1.0: all the machine gave). CPU shares: CPU time / wall time over the rounds (the "
                  "workers spin between passes, so theirs includes waiting); wait: time runnable but not run "
                  "(schedstat); worker sleeps: the workers' voluntary context switches (a worker sleeps when a gap "
                  "between passes outlasts its spinning); steal: the machine's steal time (/proc/stat), per round.\n")
     lines.append("| scene | backend | threads | rounds | wall ms/round (median) | speed-up median | quartiles | "
-                 "min-max | caller CPU share | workers' CPU share | wait ms/round | worker sleeps/round | steal ms/round |")
-    lines.append("|" + "---|" * 13)
+                 "min-max | ceiling, same rounds | speed-up / ceiling | caller CPU share | workers' CPU share | "
+                 "wait ms/round | worker sleeps/round | steal ms/round |")
+    lines.append("|" + "---|" * 15)
     for r in rows:
         lines.append(f"| {r['scene']} | {r['backend']} | {r['threads']} | {r['rounds']} | "
                      f"{num(r['wall_ms_median']):.2f} | {num(r['speedup_median']):.2f} | "
                      f"{num(r['speedup_q1']):.2f}-{num(r['speedup_q3']):.2f} | "
-                     f"{num(r['speedup_min']):.2f}-{num(r['speedup_max']):.2f} | {num(r['caller_cpu_share']):.2f} | "
+                     f"{num(r['speedup_min']):.2f}-{num(r['speedup_max']):.2f} | "
+                     + (f"{num(r['ceiling_speedup_median']):.2f} | {num(r['speedup_over_ceiling_median']):.2f} | "
+                        if r.get("ceiling_speedup_median") else "| | ")
+                     + f"{num(r['caller_cpu_share']):.2f} | "
                      f"{num(r['worker_cpu_share']):.2f} | {num(r['wait_ms_per_round']):.2f} | "
                      f"{num(r['worker_sleeps_per_round']):.1f} | {num(r['steal_ms_per_round']):.1f} |")
     lines.append("")
