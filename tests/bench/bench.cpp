@@ -624,14 +624,19 @@ struct Side {
     std::vector<Round> rounds;
 };
 
-/// Runs the sides' rounds interleaved, in turn forwards and backwards, so neither side always
-/// follows the other and a burst of load falls on all of them.
-void run_rounds(std::vector<Side>& sides, int rounds) {
+/// Runs the sides' rounds interleaved: the sides in groups of `group` consecutive ones (0: one
+/// group), each group in turn forwards and backwards, so neither side of a group always follows the
+/// other and a burst of load falls on all of them. With one group, its first and last side run twice
+/// in a row where the order turns (a warmer cache).
+void run_rounds(std::vector<Side>& sides, int rounds, size_t group = 0) {
+    const size_t g = group ? group : sides.size();
     for (int k = 0; k < rounds; ++k)
-        for (size_t i = 0; i < sides.size(); ++i) {
-            Side& s = sides[k % 2 ? sides.size() - 1 - i : i];
-            s.rounds.push_back(timed_round(s.workers, s.round));
-        }
+        for (size_t first = 0; first < sides.size(); first += g)
+            for (size_t i = 0; i < g && first + i < sides.size(); ++i) {
+                const size_t n = std::min(g, sides.size() - first);
+                Side& s = sides[first + (k % 2 ? n - 1 - i : i)];
+                s.rounds.push_back(timed_round(s.workers, s.round));
+            }
 }
 
 /// Per-round ratios of a's wall time to b's.
@@ -641,24 +646,26 @@ std::vector<double> round_ratios(const Side& a, const Side& b) {
     return r;
 }
 
-/// run_rounds, then the first `reported` sides' rounds to rounds_csv and their summaries to csv,
-/// with the per-round speed-up against the first side (one thread). Sides [reported, reported + 2),
-/// if there, are the short calibration on one thread and on several in the same rounds: the
-/// machine's two-thread ceiling at the time of each round (idle, one thread's calibration time moved
-/// by a fifth from round to round in one run, the two threads' did not), and each reported side
-/// with several threads gets its per-round speed-up over that round's ceiling.
-void interleave(std::vector<Side>& sides, size_t reported, int rounds, Csv& csv, Csv& rounds_csv,
+/// run_rounds, then the sides' rounds to rounds_csv and their summaries to csv, with the per-round
+/// speed-up against the first reported side (one thread). With `ceiling`, the first and the last
+/// side are the short calibration on one thread and on several, in the same rounds and not reported:
+/// the machine's two-thread ceiling at the time of each round (idle, one thread's calibration time
+/// moved by a fifth from round to round in one run, the two threads' did not), and each reported side
+/// with several threads gets its per-round speed-up over that round's ceiling. (At the ends, they are
+/// the sides that run twice in a row where run_rounds turns, so each reported side always follows
+/// another.)
+void interleave(std::vector<Side>& sides, bool ceiling, int rounds, Csv& csv, Csv& rounds_csv,
                 const std::string& prefix) {
     run_rounds(sides, rounds);
+    const size_t first = ceiling ? 1 : 0, last = ceiling ? sides.size() - 1 : sides.size();
     std::vector<double> one;
-    for (const Round& r : sides[0].rounds) one.push_back(r.wall);
-    const std::vector<double> ceiling =
-        sides.size() >= reported + 2 ? round_ratios(sides[reported], sides[reported + 1]) : std::vector<double>{};
-    for (size_t i = 0; i < reported; ++i) {
+    for (const Round& r : sides[first].rounds) one.push_back(r.wall);
+    const std::vector<double> ceilings = ceiling ? round_ratios(sides.front(), sides.back()) : std::vector<double>{};
+    for (size_t i = first; i < last; ++i) {
         const Side& s = sides[i];
-        const std::vector<double> speedup = round_ratios(sides[0], s);
+        const std::vector<double> speedup = round_ratios(sides[first], s);
         std::vector<double> over;
-        for (size_t k = 0; k < ceiling.size() && k < speedup.size(); ++k) over.push_back(speedup[k] / ceiling[k]);
+        for (size_t k = 0; k < ceilings.size() && k < speedup.size(); ++k) over.push_back(speedup[k] / ceilings[k]);
         std::vector<double> wall;
         double caller_cpu = 0, worker_cpu = 0, wait = 0, sleeps = 0, steal = 0, total = 0;
         for (size_t k = 0; k < s.rounds.size(); ++k) {
@@ -669,11 +676,11 @@ void interleave(std::vector<Side>& sides, size_t reported, int rounds, Csv& csv,
             rounds_csv.row("%s,%s,%s,%u,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.0f,%.4f,%s", prefix.c_str(), s.scene.c_str(),
                            s.backend.c_str(), s.threads, k, r.wall, one[k] / r.wall, r.caller_cpu, r.caller_wait,
                            r.worker_cpu, r.worker_wait, r.worker_sleeps, r.steal,
-                           k < ceiling.size() ? fmt("%.4f", ceiling[k]).c_str() : "");
+                           k < ceilings.size() ? fmt("%.4f", ceilings[k]).c_str() : "");
         }
         const double rounds = double(s.rounds.size());
         const std::string vs_ceiling =
-            ceiling.empty() || s.threads == 1 ? "," : fmt("%.3f", median(ceiling)) + "," + fmt("%.3f", median(over));
+            ceilings.empty() || s.threads == 1 ? "," : fmt("%.3f", median(ceilings)) + "," + fmt("%.3f", median(over));
         csv.row("%s,%s,%s,%u,%zu,%.4f,%s,%s,%.3f,%.3f,%.4f,%.1f,%.4f", prefix.c_str(), s.scene.c_str(), s.backend.c_str(),
                 s.threads, s.rounds.size(), median(wall), ratio_summary(one, wall).c_str(), vs_ceiling.c_str(),
                 caller_cpu / total, worker_cpu / total, wait / rounds, sleeps / rounds, steal / rounds);
@@ -758,13 +765,13 @@ void run_threads(const Options& o) {
         const uint32_t items = empty ? 0 : short_passes ? short_items : uint32_t(std::max(64.0, 2.0 / ms_per_item));
         const int passes = empty ? 1000 : short_passes ? (o.quick ? 100 : 1000) : (o.quick ? 3 : 25);  // ~50 ms a round
         std::vector<Side> sides = calibration_sides(std::string("calibration_") + length, items, passes);
-        interleave(sides, sides.size(), rounds, csv, rounds_csv, "calibration");
+        interleave(sides, false, rounds, csv, rounds_csv, "calibration");
         g_progress.tick(std::string("calibration ") + length);
     }
     // The falling cloth (two top corners) on the CPU backend (one thread), CPU_THREADED with one
     // thread (the same code path as with several) and with o.threads; all take the same steps (the
     // same bits), so a round is the same work on each. The short calibration in the same rounds
-    // (200 passes, ~10 ms of one thread) is each round's ceiling.
+    // (200 passes, ~10 ms of one thread), first and last in the order, is each round's ceiling.
     const std::vector<Side> ceiling = calibration_sides("ceiling", short_items, o.quick ? 20 : 200);
     for (uint32_t n : sizes)
         for (uint32_t model : models) {
@@ -799,9 +806,9 @@ void run_threads(const Options& o) {
                     for (int k = 0; k < reps; ++k) drape_cloth_step(sim->cloth, 1.0f / 60);
                 };
             }
-            const size_t cloth_sides = sides.size();
-            sides.insert(sides.end(), ceiling.begin(), ceiling.end());
-            interleave(sides, cloth_sides, rounds, csv, rounds_csv, "cloth");
+            sides.insert(sides.begin(), ceiling[0]);
+            sides.push_back(ceiling[1]);
+            interleave(sides, true, rounds, csv, rounds_csv, "cloth");
             if (sims[0]->positions() != sims[2]->positions())
                 std::fprintf(stderr, "threads: %u^2 %s: CPU_THREADED differs from CPU\n", n, model_name(model));
             g_progress.tick(std::to_string(n) + "^2 " + model_name(model));
@@ -1027,8 +1034,8 @@ void run_rest(const Options& o) {
                                 model_name(rc.c.model) + (r.at_rest ? " to rest" : " (timing only)"));
                 runs.push_back(std::move(r));
             }
-            // One thread and the twin of each setting, interleaved (run_rounds); the speed-up is taken
-            // per round (threads.csv's way).
+            // One thread and the twin of each setting, interleaved (run_rounds, a group per setting: in
+            // odd rounds the twin first); the speed-up is taken per round (threads.csv's way).
             std::vector<Side> sides;
             for (Run& r : runs)
                 for (Sim* sim : {r.sim.get(), r.threaded.get()}) {
@@ -1041,7 +1048,7 @@ void run_rest(const Options& o) {
                     };
                     sides.push_back(std::move(side));
                 }
-            run_rounds(sides, rounds);
+            run_rounds(sides, rounds, o.threads > 1 ? 2 : 1);
             for (size_t k = 0, side = 0; k < runs.size(); ++k) {
                 Run& r = runs[k];
                 for (const Round& round : sides[side].rounds) {
