@@ -106,10 +106,10 @@ class ImplicitSolve {
     /// Particles per partial sum of a dot product: fixed, so that the order of the sums, and so their
     /// bits, do not depend on the thread count.
     static constexpr uint32_t kBlock = 256;
-    /// pool when it has several threads and the cloth is large enough to split (ThreadPool::
-    /// kMinParallelCount particles), else null: the calling thread alone.
+    /// pool when it would split the particles (ThreadPool::chunks, the particle passes' rule), else
+    /// null: the calling thread alone.
     ThreadPool* parallel(ThreadPool* pool) const {
-        return pool && pool->size() > 1 && r_.size() >= ThreadPool::kMinParallelCount ? pool : nullptr;
+        return pool && pool->chunks(uint32_t(r_.size())) > 1 ? pool : nullptr;
     }
     /// fn(begin, end) -> double over the particles in blocks of kBlock, each thread taking whole
     /// blocks; returns the blocks' results summed in block order.
