@@ -345,9 +345,36 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
             const uint8_t g = nb.group[size_t(i) * nb.slots + s];
             if (g < DRAPE_GROUP_COUNT && params.stiffness[g] > 0) col_k_[size_t(s) * n + i] = params.stiffness[g];
         }
+    // The curvature pass's springs (kernels::CountedSprings), about half of the table: each once.
+    uint32_t most = 0;
+    counted_count_.assign(n, 0);
+    auto counted = [&](uint32_t i, uint32_t s) {
+        const size_t slot = size_t(i) * nb.slots + s;
+        const uint32_t j = nb.index[slot];
+        return x[i].w != 0.0f && col_k_[size_t(s) * n + i] > 0 && !(j < i && x[j].w != 0.0f);
+    };
+    for (uint32_t i = 0; i < n; ++i) {
+        for (uint32_t s = 0; s < nb.count[i]; ++s) counted_count_[i] += counted(i, s);
+        most = std::max(most, counted_count_[i]);
+    }
+    counted_index_.resize(size_t(most) * n);
+    counted_rest_.assign(size_t(most) * n, 1.0f);
+    counted_k_.assign(size_t(most) * n, 0.0f);
+    for (uint32_t i = 0; i < n; ++i) {
+        uint32_t t = 0;
+        for (uint32_t s = 0; s < nb.count[i]; ++s)
+            if (counted(i, s)) {
+                const size_t slot = size_t(i) * nb.slots + s, to = size_t(t++) * n + i;
+                counted_index_[to] = nb.index[slot];
+                counted_rest_[to] = nb.rest[slot];
+                counted_k_[to] = col_k_[size_t(s) * n + i];
+            }
+        for (; t < most; ++t) counted_index_[size_t(t) * n + i] = i;
+    }
     frames_.assign(size_t(n) * nb.slots * 4, 0.0f);
     in_contact_.reserve(n);
     block_sum_.assign((n + kBlock - 1) / kBlock, 0.0);
+    block_shrink_.assign(block_sum_.size(), 0.0f);
     coarse_.build(topo, x);
     levels_.build(topo, x);
     levels_fresh_ = false;
@@ -382,6 +409,8 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
     // blocks, also D (block_inv_) there, with frames the springs' frames_. At a contact r loses its
     // inward part (p has none, so r.p loses that part's share).
     const kernels::SpringFrames frames{frames_.data(), c.stride};
+    const kernels::CountedSprings counted{counted_count_.data(), counted_index_.data(), counted_rest_.data(),
+                                          counted_k_.data()};
     auto residual = [&](const Particle* p, bool blocks = false, bool with_frames = false) {
         double rp = over_blocks(pool, [&](uint32_t b, uint32_t e) {
             if (blocks)
@@ -515,8 +544,13 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
             });
         }
         alpha = float(rp / over_blocks(pool, [&](uint32_t begin, uint32_t end) {
-                          return kernels::implicit_curvature(c, iterate, start, p_.data(), begin, end);
+                          float& shrink = block_shrink_[begin / kBlock];
+                          shrink = 0.0f;
+                          return kernels::implicit_curvature_simd(c, counted, iterate, start, p_.data(), begin, end,
+                                                                  kStepFloor, &shrink);
                       }));
+        const float shrink = *std::max_element(block_shrink_.begin(), block_shrink_.end());
+        if (alpha * shrink > 1.0f) alpha = 1.0f / shrink;  // no stretched spring below kStepFloor of its rest length
         move(p_, alpha);
         if (double(alpha) * rp <= converged_release) break;
         rz_prev = dots.rz;

@@ -30,7 +30,13 @@
 //   them the tension and A the stiffness; with a few iterations they kept ringing at the user's
 //   default drag (65^2 sheet: 4.6e-4 of the displacement after 5.5 s, exact implicit Euler 1.2e-6).
 // Step lengths come from H (kernels::implicit_curvature), except for a 1-iteration budget, which
-// takes the plain step d += A^-1 r without D (see solve). With D the taut sheets settle without
+// takes the plain step d += A^-1 r without D (see solve). They are cut where a step would shorten a
+// stretched spring below kStepFloor of its rest length: far from equilibrium H at the step's start
+// does not see a spring turn over, and the first step of a free cloth let go 10 times stretched
+// (bench part 'stress', S5) folded its corners into their neighbours, which 4 iterations could not
+// undo (max strain after the first frame 0.99 at 2 x 4; converged implicit Euler 0.43, cut 0.40). A
+// spring already shorter than its rest length is never limited, so no solve stalls on one; in the
+// bench's motion and at rest the cut never acts (the same bits). With D the taut sheets settle without
 // refactoring A at rest with its springs' tension (which the library did until D came: 56 bytes per
 // factor entry, 611 ms per 129^2 refactor).
 // The fixed point is r = 0, the exact equilibrium, whatever the preconditioner.
@@ -102,6 +108,9 @@ class ImplicitSolve {
 
   private:
     static constexpr uint32_t kMaxHalvings = 8;  ///< of a step along which Phi rose (see solve)
+    /// A step may shorten a stretched spring (along its direction) to this share of its rest length at
+    /// most (see the file comment).
+    static constexpr float kStepFloor = 0.1f;
     static constexpr int kParts = 2;  ///< parts of the nested dissection; the separator follows
     /// Particles per partial sum of a dot product: fixed, so that the order of the sums, and so their
     /// bits, do not depend on the thread count.
@@ -164,6 +173,7 @@ class ImplicitSolve {
     uint32_t sep_stride_ = 0;         ///< part p's sums: sep_sum_[p * sep_stride_ + row - separator's first]
     Dots part_dots_[kParts + 1];      ///< the parts' and the separator's share of the dot products
     std::vector<double> block_sum_;   ///< over_blocks' per-block results
+    std::vector<float> block_shrink_;  ///< per block the curvature pass's shrink rate (see solve)
     // Conjugate gradients, one record per particle: residual, the previous one, preconditioned
     // residual and direction.
     std::vector<Particle> r_, r_prev_, z_, p_;
@@ -173,6 +183,9 @@ class ImplicitSolve {
     /// Per slot of the neighbour table, column-major like SubstepContext::col_index, its spring's
     /// stiffness (N/m; 0 where inactive or padding): the residual's springs in SIMD lanes.
     std::vector<float> col_k_;
+    // The curvature pass's springs (kernels::CountedSprings).
+    std::vector<uint32_t> counted_count_, counted_index_;
+    std::vector<float> counted_rest_, counted_k_;
     /// The springs' directions and tensions (kernels::SpringFrames) that the residual pass writes in
     /// the second iteration, for the coarse space and levels.
     std::vector<float> frames_;

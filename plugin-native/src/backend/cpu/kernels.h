@@ -107,6 +107,17 @@ struct SpringFrames {
     float across(uint32_t s, uint32_t i) const { return at(s, 3)[i]; }
 };
 
+/// IMPLICIT: per particle the springs implicit_curvature counts from it (each spring once: from its
+/// lower-indexed end, or from its free end when the other is kinematic; none from a kinematic
+/// particle), in its slot order. Column-major like SubstepContext::col_index (slot s of particle i at
+/// s * stride + i); slots past a particle's count have k = 0, rest length 1 and its own index.
+struct CountedSprings {
+    const uint32_t* count = nullptr;
+    const uint32_t* index = nullptr;
+    const float* rest = nullptr;
+    const float* k = nullptr;  ///< N/m
+};
+
 /// glsl::direction with the length through a pointer (the IMPLICIT kernels' form).
 inline glm::vec3 direction(const glm::vec3& d, float* len) { return glsl::direction(d, *len); }
 
@@ -352,8 +363,11 @@ inline double implicit_residual(const SubstepContext& c, const Particle* disp, c
 /// glsl::implicit_tension(magnitude false): (k + kd/h) n n^T + k max(0, 1 - L/l) (I - n n^T). p^T H p is a sum over springs, so each spring
 /// is counted once, from its lower-indexed end (from its free end if the other is kinematic), and
 /// no H p is stored. p must be 0 on kinematic particles.
+/// Also raises *shrink to the largest rate -n.(p_i - p_j) / (l - floor L) over the springs it counts
+/// that are stretched (l >= L) and that p shortens: a step of length alpha along p brings such a
+/// spring's length along its direction to floor L where alpha times that rate is 1.
 inline double implicit_curvature(const SubstepContext& c, const Particle* disp, const Particle* start,
-                                 const Particle* p, uint32_t begin, uint32_t end) {
+                                 const Particle* p, uint32_t begin, uint32_t end, float floor, float* shrink) {
     const float kd_h = c.damping / c.h;
     const float inv_h2 = 1.0f / (c.h * c.h);
     double sum = 0;
@@ -371,6 +385,7 @@ inline double implicit_curvature(const SubstepContext& c, const Particle* disp, 
             const float along = glm::dot(n, dp);
             const float across = glsl::implicit_tension(len, rest, k, false);
             e += (k + kd_h) * along * along + across * (glm::dot(dp, dp) - along * along);
+            if (len >= rest && along < 0.0f) *shrink = std::max(*shrink, -along / (len - floor * rest));
         });
         sum += double(e);
     }

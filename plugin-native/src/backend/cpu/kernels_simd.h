@@ -11,6 +11,7 @@
 // components.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 
@@ -33,6 +34,14 @@ namespace simd {
 
 typedef float F4 __attribute__((vector_size(16)));
 typedef int32_t I4 __attribute__((vector_size(16)));
+
+inline F4 max4(F4 a, F4 b) {  // a or b where either is NaN: the callers pass none
+#if defined(__SSE2__)
+    return F4(_mm_max_ps(__m128(a), __m128(b)));
+#else
+    return F4(vmaxq_f32(float32x4_t(a), float32x4_t(b)));
+#endif
+}
 
 inline F4 sqrt4(F4 v) {
 #if defined(__SSE2__)
@@ -243,6 +252,70 @@ inline double implicit_residual_simd(const SubstepContext& c, const float* col_k
         rp += implicit_residual<kBlocks, kFrames>(c, disp, target, start, p, residual, i, i + 1, block_inv,
                                                   frames);
     return rp;
+}
+
+/// implicit_curvature (and its *shrink) on four particles at once, over the springs it counts
+/// (springs): in SIMD lanes, each lane's sum in the scalar kernel's slot order (a padding slot adds
+/// exactly +0: e never is -0), the particles' sums in order: the same bits.
+inline double implicit_curvature_simd(const SubstepContext& c, const CountedSprings& springs, const Particle* disp,
+                                      const Particle* start, const Particle* p, uint32_t begin, uint32_t end,
+                                      float floor, float* shrink) {
+    double sum = 0;
+    uint32_t i = begin;
+#if DRAPE_SIMD
+    using simd::F4;
+    using simd::I4;
+    using simd::V3;
+    const float kd_h = c.damping / c.h;
+    const float inv_h2 = 1.0f / (c.h * c.h);
+    const F4 zero = {0, 0, 0, 0}, one = {1, 1, 1, 1};
+    F4 rate = zero;
+    for (; i + 4 <= end; i += 4) {
+        const uint32_t self[4] = {i, i + 1, i + 2, i + 3};
+        const V3 di = simd::gather(disp, self);
+        const V3 si = simd::gather(start, self);
+        const V3 pi = simd::gather(p, self);
+        const V3 xi{si.x + di.x, si.y + di.y, si.z + di.z};
+        F4 e = zero;
+        uint32_t max_count = 0;
+        for (int l = 0; l < 4; ++l) {
+            const float wi = disp[i + l].w;
+            if (wi != 0.0f) e[l] = (pi.x[l] * pi.x[l] + pi.y[l] * pi.y[l] + pi.z[l] * pi.z[l]) * (inv_h2 / wi);
+            max_count = springs.count[i + l] > max_count ? springs.count[i + l] : max_count;
+        }
+        for (uint32_t s = 0; s < max_count; ++s) {
+            const size_t base = size_t(s) * c.stride + i;  // four consecutive slots (column-major)
+            uint32_t j[4];
+            F4 rest, k;
+            std::memcpy(j, springs.index + base, sizeof j);
+            std::memcpy(&rest, springs.rest + base, sizeof rest);
+            std::memcpy(&k, springs.k + base, sizeof k);
+            const I4 on = k > zero;
+            const V3 dj = simd::gather(disp, j);
+            const V3 sj = simd::gather(start, j);
+            const V3 pj = simd::gather(p, j);
+            const V3 d{xi.x - (sj.x + dj.x), xi.y - (sj.y + dj.y), xi.z - (sj.z + dj.z)};
+            const F4 len = simd::sqrt4(d.x * d.x + d.y * d.y + d.z * d.z);
+            const F4 inv = len > zero ? one / len : zero;  // direction(): zero for a zero length
+            const V3 n{d.x * inv, d.y * inv, d.z * inv};
+            const V3 dp{pi.x - pj.x, pi.y - pj.y, pi.z - pj.z};
+            const F4 along = n.x * dp.x + n.y * dp.y + n.z * dp.z;
+            const F4 t = one - rest / len;  // glsl::implicit_tension (clamped)
+            const F4 across = len > zero ? k * (zero < t ? t : zero) : zero;
+            const F4 term = (k + kd_h) * along * along + across * ((dp.x * dp.x + dp.y * dp.y + dp.z * dp.z) - along * along);
+            e += F4(I4(term) & on);
+            // 0 where the spring is not stretched (padding slots have rest > len = 0); not positive
+            // where p does not shorten it.
+            const F4 shortens = -along / (len - floor * rest);
+            rate = simd::max4(rate, F4(I4(shortens) & (len >= rest)));
+        }
+        for (int l = 0; l < 4; ++l)
+            if (disp[i + l].w != 0.0f) sum += double(e[l]);
+    }
+    for (int l = 0; l < 4; ++l) *shrink = std::max(*shrink, rate[l]);
+#endif
+    for (; i < end; ++i) sum += implicit_curvature(c, disp, start, p, i, i + 1, floor, shrink);
+    return sum;
 }
 
 /// The CPU step's runaway check (CpuCloth::verify): true if a spring of particles [begin, end) has
