@@ -758,15 +758,17 @@ drape_cloth* dropped_sheet(drape_world* w, drape_backend backend, drape_model mo
 // The GLES default in motion against implicit Euler's answer (CPU IMPLICIT at 32 x 64, which XPBD
 // at 64 x 4 matches to 7 mm rms): over the first second of a drop from two corners, the rms vertex
 // distance from it, averaged over the frames, and the largest strain, at the default stiffness and
-// with structural springs at 1e5 N/m (100 times the shear springs). Measured (llvmpipe), 2e3 / 1e5 N/m:
-// default (IMPLICIT 16 x 2 / 40 x 2 with a coarse V-cycle per substep) 0.023 m / 0.054 m, max strain
-// 0.060 / 0.035; XPBD 16 x 1 (the GLES default before) 0.14 m / 0.15 m, 0.92 / 0.89. At 1e5 N/m the
-// 16-substep default tied XPBD (16 x 3: 0.16 m). Without the coarse levels 0.12 m at 2e3 N/m; the old
-// GLES IMPLICIT budget 2 x 8: 0.29 m. Held to half of XPBD's distance and strain. The reference is
-// not converged to rounding (each CPU substep stops at kImplicitTolerance), so it moves with the
-// CPU's preconditioner: between 6cc6213 and 251d88e by 7.9 mm rms at 2e3 N/m, and the same GLES
-// code read 0.022 m against the first and 0.025 m against the second.
-void expect_drop_closer_than_xpbd(float structural) {
+// with structural springs at 1e5 and 1e6 N/m (100 and 1000 times the shear springs). Measured
+// (llvmpipe), 2e3 / 1e5 / 1e6 N/m: default (IMPLICIT 16 x 2 / 43 x 2 / 76 x 2 with a coarse V-cycle
+// per substep) 0.020 m / 0.044 m / 0.107 m, max strain 0.060 / 0.038 / 0.025; XPBD 16 x 1 (the GLES
+// default before) 0.148 m / 0.148 m / 0.145 m, 0.92 / 0.89 / 0.89. At 1e5 N/m the 16-substep default
+// tied XPBD (16 x 3: 0.16 m); at 1e6 N/m 40 x 2 was behind it (0.26 m). Without the coarse levels
+// 0.12 m at 2e3 N/m; the old GLES IMPLICIT budget 2 x 8: 0.29 m. Held to rms_share of XPBD's distance
+// (XPBD fails any share below 1) and half its strain. The reference is not converged to rounding
+// (each CPU substep stops at kImplicitTolerance), so it moves with the CPU's preconditioner: between
+// 6cc6213 and 251d88e by 7.9 mm rms at 2e3 N/m, and the same GLES code read 0.022 m against the first
+// and 0.025 m against the second.
+void expect_drop_closer_than_xpbd(float structural, double rms_share) {
     WorldPtr w = make_world(1);
     drape_cloth* ref = dropped_sheet(w.get(), DRAPE_BACKEND_CPU, DRAPE_MODEL_IMPLICIT, 32, 64, structural);
     drape_cloth* def = dropped_sheet(w.get(), DRAPE_BACKEND_GLES, DRAPE_MODEL_AUTO, 0, 0, structural);
@@ -790,12 +792,14 @@ void expect_drop_closer_than_xpbd(float structural) {
     std::printf("[ measured ] 33^2 drop, structural %g N/m, first 1 s, rms distance from CPU IMPLICIT 32 x 64 / max "
                 "strain: GLES default (%u x %u) %.4f m / %.3f, GLES XPBD 16 x 1 %.4f m / %.3f\n",
                 structural, stats_of(def).substeps, stats_of(def).iterations, err_def, strain_def, err_xpbd, strain_xpbd);
-    EXPECT_LE(err_def, 0.5 * err_xpbd);
+    EXPECT_LE(err_def, rms_share * err_xpbd);
     EXPECT_LE(strain_def, 0.5 * strain_xpbd);
 }
 
-TEST_F(GlesImplicit, DefaultFollowsADropAtLeastAsCloselyAsXpbd) { expect_drop_closer_than_xpbd(2000.0f); }
-TEST_F(GlesImplicit, DefaultFollowsADropAtLeastAsCloselyAsXpbdStiff) { expect_drop_closer_than_xpbd(1e5f); }
+TEST_F(GlesImplicit, DefaultFollowsADropAtLeastAsCloselyAsXpbd) { expect_drop_closer_than_xpbd(2000.0f, 0.5); }
+TEST_F(GlesImplicit, DefaultFollowsADropAtLeastAsCloselyAsXpbdStiff) { expect_drop_closer_than_xpbd(1e5f, 0.5); }
+// 0.74 of XPBD's distance measured: held to 0.85.
+TEST_F(GlesImplicit, DefaultFollowsADropAtLeastAsCloselyAsXpbdVeryStiff) { expect_drop_closer_than_xpbd(1e6f, 0.85); }
 
 // A curtain at the default stiffness (2000 / 1000 / 200 N/m), 17^2, swung by its top row (0.25 m
 // along its normal at 1 Hz for 1 s), held, then jerked 0.3 m in one frame, 1.5 s left to settle.

@@ -145,7 +145,7 @@ STRUCTS = [
                field("air_drag", "f32", "a += air_drag*(wind - v)", unit="1/s", default=0.1, range=(0, 1000)),
                field("substeps", "u32",
                      "per step; 0 = automatic (MASS_SPRING: from the stability bound, see drape_estimate_stability; "
-                     "PBD, XPBD: 16 \"small steps\"; IMPLICIT: 2, on GLES one per 1/960 s of the step (up to 2.5 times as many "
+                     "PBD, XPBD: 16 \"small steps\"; IMPLICIT: 2, on GLES one per 1/960 s of the step (up to 5 times as many "
                      "for structural springs much stiffer than shear ones); on CPU backends more "
                      "while a collider near the cloth moves over half its size per substep, or with self-collision a "
                      "particle over a quarter of the thickness). Automatic or given, "

@@ -97,10 +97,10 @@ namespace Drape.Core
         public float AirDrag;
         /// <summary>Per step; 0 = automatic (MASS_SPRING: from the stability bound, see
         /// drape_estimate_stability; PBD, XPBD: 16 "small steps"; IMPLICIT: 2, on GLES one per 1/960 s of the
-        /// step (up to 2.5 times as many for structural springs much stiffer than shear ones); on CPU
-        /// backends more while a collider near the cloth moves over half its size per substep, or with
-        /// self-collision a particle over a quarter of the thickness). Automatic or given, at most
-        /// DRAPE_MAX_SUBSTEPS. Range [0, DRAPE_MAX_SUBSTEPS]. Default 0.</summary>
+        /// step (up to 5 times as many for structural springs much stiffer than shear ones); on CPU backends
+        /// more while a collider near the cloth moves over half its size per substep, or with self-collision
+        /// a particle over a quarter of the thickness). Automatic or given, at most DRAPE_MAX_SUBSTEPS. Range
+        /// [0, DRAPE_MAX_SUBSTEPS]. Default 0.</summary>
         public uint Substeps;
         /// <summary>Solver iterations per substep (PBD, XPBD, IMPLICIT; IMPLICIT on the CPU: at most, fewer
         /// once converged); 0 = automatic (IMPLICIT: 4, on GLES 2; PBD and XPBD: 1). Range [0,
