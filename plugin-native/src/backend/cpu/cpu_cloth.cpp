@@ -293,6 +293,7 @@ Result CpuCloth::finish(float dt, const VerifyPartial& total) {
         std::memcpy(d_.data(), backup_d_.data(), n * sizeof(Particle));
         h_prev_ = backup_h_prev_;
         fresh_ = backup_fresh_;
+        implicit_.state_set();  // what its solves kept belongs to the step rolled back
         // kinematic_target_ keeps the requested pin and grab moves: the next step makes them.
         ++stats_.unstable_steps;
         interaction_end_step(dt, true);

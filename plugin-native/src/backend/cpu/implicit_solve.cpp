@@ -378,6 +378,7 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     coarse_.build(topo, x);
     levels_.build(topo, x);
     levels_fresh_ = false;
+    blocks_fresh_ = false;
 }
 
 template <class Fn>
@@ -464,6 +465,16 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
     // Hessian's.
     const bool plain_step = max_iterations == 1 && h_ < c.h * (1.0f + kImplicitRefactor);
     with_blocks_ = !plain_step;  // D comes with the first residual
+    // D as the previous solve built or kept it, when that solve stopped after its first iteration (a
+    // cloth at rest or nearly: it has barely moved since) at the same substep length and no collider
+    // touched the cloth since: building D was ~8 % of a step at rest (65^2 curtain). At most
+    // kKeepBlocks solves in a row, so that a cloth drifting slowly (swinging, turned with its owner)
+    // gets it anew. D is only a preconditioner: a stale one changes the directions, not the minimum
+    // the solve stops at.
+    const bool keep_blocks =
+        with_blocks_ && blocks_fresh_ && c.h == blocks_h_ && kept_ < kKeepBlocks && contact_normal == nullptr;
+    kept_ = keep_blocks ? kept_ + 1 : 0;
+    blocks_h_ = c.h;
     with_coarse_ = false;
     // The coarse levels as an earlier solve assembled them, when the previous solve used them and
     // not its whole budget: a cloth in mild motion or settled (a taut sheet ringing about its rest
@@ -500,7 +511,7 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         // coarse space and levels (coarse_space.h), assembled at this iterate from the springs' frames
         // that its residual passes write; a cloth at rest never pays for them.
         const bool second = it == 1 && with_blocks_, assemble = second && !reuse;
-        double rp_new = residual(first ? nullptr : p_.data(), first && with_blocks_, assemble);
+        double rp_new = residual(first ? nullptr : p_.data(), first && with_blocks_ && !keep_blocks, assemble);
         bool restart = first;
         if (!first && rp_prev + rp_new < 0) {
             float back = alpha;
@@ -557,6 +568,7 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         rp_prev = rp;
     }
     levels_fresh_ = with_levels_ && it < max_iterations;
+    blocks_fresh_ = with_blocks_ && it == 1 && it < max_iterations;
     // The caller commits the positions start + d in floats, which rounds each coordinate by up to half
     // a float step (6e-8 m at 1 m): the springs' lengths change by about that, and their forces by k
     // times it, noise that the next solve's first step spent itself undoing (at rest 0.9-1.5 times

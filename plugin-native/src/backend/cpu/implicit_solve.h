@@ -15,7 +15,7 @@
 // - D: per free particle its 3x3 block of H at the solve's first iterate, M/h^2 plus per spring
 //   (k + kd/h) n n^T + T (I - n n^T), built by the first residual pass (kernels::implicit_residual
 //   <true>): ~h^2/m where A^-1 is ~0 (motion across the springs), ~0 where A^-1 is right (along
-//   stiff springs). Fall then 0.97 / 0.76.
+//   stiff springs). Fall then 0.97 / 0.76. At rest a solve keeps the previous solve's D (see solve).
 // - G Hc^-1 G^T: H restricted to the rigid motions of a few patches (coarse_space.h). A cloth
 //   swinging about its pins or folding turns its springs without stretching them, a motion
 //   coordinated over the whole cloth that A charges every spring's k and per-particle D cannot
@@ -79,12 +79,13 @@ class ImplicitSolve {
     bool inputs_changed(const drape_params& params, const Particle* x, uint32_t n);
     /// Forgets the inputs, so that the next inputs_changed is true.
     void clear() { key_.clear(); }
-    /// Positions or velocities were set from outside: the rounding carried over (see solve) and the
-    /// coarse levels kept from earlier solves belong to the old state.
+    /// Positions or velocities were set from outside: the rounding carried over (see solve), the
+    /// coarse levels and D kept from earlier solves belong to the old state.
     void state_set() {
         std::fill(carry_.begin(), carry_.end(), glm::vec3(0.0f));
         std::fill(carried_.begin(), carried_.end(), glm::vec3(0.0f));
         levels_fresh_ = false;
+        blocks_fresh_ = false;
     }
 
     /// Builds and factors A for substep h; particles with x[i].w == 0 are kinematic. Allocates.
@@ -178,6 +179,10 @@ class ImplicitSolve {
     // residual and direction.
     std::vector<Particle> r_, r_prev_, z_, p_;
     std::vector<kernels::SymMat3> block_inv_;  ///< per particle the inverse of its block of H (D)
+    bool blocks_fresh_ = false;  ///< the next solve may keep block_inv_ (see solve)
+    float blocks_h_ = 0;         ///< substep block_inv_ was built for
+    static constexpr uint32_t kKeepBlocks = 8;  ///< solves in a row that may keep block_inv_
+    uint32_t kept_ = 0;          ///< solves in a row that kept it
     std::vector<glm::vec3> carry_;  ///< per particle what the last commit's rounding took (see solve's end)
     std::vector<glm::vec3> carried_;  ///< carry_ as the last solve received it (in its displacements)
     /// Per slot of the neighbour table, column-major like SubstepContext::col_index, its spring's
