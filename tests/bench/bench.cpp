@@ -693,11 +693,15 @@ void interleave(std::vector<Side>& sides, bool ceiling, int rounds, Csv& csv, Cs
 /// the pool's barriers (short) and without them (long), in the same run as the cloth's. Passes with
 /// no work (empty, 1000 a round), each chunk waiting until every chunk has started so that every
 /// thread takes part (with no work the caller would take them all): the pool's own cost per pass
-/// (the several threads' ms per round is us per pass; their "speed-up" means nothing).
+/// (the several threads' ms per round is us per pass; their "speed-up" means nothing). Wide: long
+/// passes of 32 independent chains per item, bound by the core's issue width rather than by one
+/// chain's latency: two threads on two cores gain as much as in the long passes, two hardware threads
+/// of one core (the VM's vCPUs may be such siblings on the host) far less, since they share the issue
+/// width that the cloth's SIMD passes need.
 struct Calibration {
     explicit Calibration(uint32_t threads) : pool(threads), sums(threads * 16) {}
-    /// `passes` passes over `items` items (0: empty passes).
-    void run(uint32_t items, int passes) {
+    /// `passes` passes over `items` items (0: empty passes); wide: 32 chains an item.
+    void run(uint32_t items, int passes, bool wide = false) {
         const uint32_t n = pool.size();
         for (int p = 0; p < passes; ++p) {
             std::atomic<uint32_t> started{0};
@@ -710,6 +714,14 @@ struct Calibration {
                 }
                 float acc = 0;
                 for (uint32_t i = items * t / n; i < items * (t + 1) / n; ++i) {
+                    if (wide) {
+                        float x[32];
+                        for (int j = 0; j < 32; ++j) x[j] = float(i + j);
+                        for (int k = 0; k < 64; ++k)
+                            for (int j = 0; j < 32; ++j) x[j] = x[j] * 0.999f + 0.5f;  // independent chains
+                        for (int j = 0; j < 32; ++j) acc += x[j];
+                        continue;
+                    }
                     float x = float(i);
                     for (int k = 0; k < 64; ++k) x = x * 0.999f + 0.5f;  // a dependent chain: compute only
                     acc += x;
@@ -735,11 +747,11 @@ void run_threads(const Options& o) {
     Csv rounds_csv(o.out + "/threads_rounds.csv",
                    "part,scene,backend,threads,round,wall_ms,speedup,caller_cpu_ms,caller_wait_ms,worker_cpu_ms,"
                    "worker_wait_ms,worker_sleeps,steal_ms,ceiling_speedup");
-    g_progress.start("threads", int(3 + sizes.size() * std::size(models)));
+    g_progress.start("threads", int(4 + sizes.size() * std::size(models)));
     // The pool alone: one thread (a pool of 1 runs every chunk on the caller) and o.threads, as
     // sides of a timing (`passes` passes over `items` items a round).
     std::vector<std::unique_ptr<Calibration>> pools;
-    auto calibration_sides = [&](const std::string& scene, uint32_t items, int passes) {
+    auto calibration_sides = [&](const std::string& scene, uint32_t items, int passes, bool wide = false) {
         std::vector<Side> sides;
         for (uint32_t t : {1u, o.threads}) {
             const std::vector<long> before = task_ids();
@@ -750,7 +762,7 @@ void run_threads(const Options& o) {
             s.threads = t;
             s.workers = new_task_ids(before);
             Calibration* c = pools.back().get();
-            s.round = [c, items, passes] { c->run(items, passes); };
+            s.round = [c, items, passes, wide] { c->run(items, passes, wide); };
             sides.push_back(std::move(s));
         }
         return sides;
@@ -760,11 +772,16 @@ void run_threads(const Options& o) {
     Calibration(1).run(1 << 16, 4);
     const double ms_per_item = std::max(1e-9, (thread_cpu_ms() - t0) / (4.0 * (1 << 16)));
     const uint32_t short_items = uint32_t(std::max(64.0, 0.05 / ms_per_item));
-    for (const char* length : {"empty", "short", "long"}) {
-        const bool empty = length[0] == 'e', short_passes = length[0] == 's';
-        const uint32_t items = empty ? 0 : short_passes ? short_items : uint32_t(std::max(64.0, 2.0 / ms_per_item));
+    const double t1 = thread_cpu_ms();
+    Calibration(1).run(1 << 12, 4, true);
+    const double ms_per_wide_item = std::max(1e-9, (thread_cpu_ms() - t1) / (4.0 * (1 << 12)));
+    for (const char* length : {"empty", "short", "long", "wide"}) {
+        const bool empty = length[0] == 'e', short_passes = length[0] == 's', wide = length[0] == 'w';
+        const uint32_t items = empty           ? 0
+                               : short_passes ? short_items
+                                              : uint32_t(std::max(64.0, 2.0 / (wide ? ms_per_wide_item : ms_per_item)));
         const int passes = empty ? 1000 : short_passes ? (o.quick ? 100 : 1000) : (o.quick ? 3 : 25);  // ~50 ms a round
-        std::vector<Side> sides = calibration_sides(std::string("calibration_") + length, items, passes);
+        std::vector<Side> sides = calibration_sides(std::string("calibration_") + length, items, passes, wide);
         interleave(sides, false, rounds, csv, rounds_csv, "calibration");
         g_progress.tick(std::string("calibration ") + length);
     }
