@@ -1,6 +1,7 @@
 // Headless OpenGL ES for tests: Mesa's surfaceless EGL platform, an ES 3.0 context (strict with
 // MESA_GLES_VERSION_OVERRIDE=3.0, set here before EGL starts and by ctest), a 1x1 FBO bound;
-// on the driver GALLIUM_DRIVER names when it is set (the softpipe test preset).
+// on the driver GALLIUM_DRIVER names when it is set (the softpipe test preset); llvmpipe without
+// rasterizer threads (LP_NUM_THREADS=0, set here; see create()).
 // Under CI=true a missing context is a failure; locally the GLES tests skip.
 #pragma once
 
@@ -36,6 +37,13 @@ public:
     /// Creates the display + context (not current). Empty string on success.
     std::string create() {
         setenv("MESA_GLES_VERSION_OVERRIDE", "3.0", 0);
+        // Mesa 22.3's llvmpipe (and lavapipe under zink) frees a scene's fence once its count reads
+        // complete, unlocked, while the rasterizer thread that completed it may still be in
+        // lp_fence_signal: its cnd_broadcast and mutex unlock then write into the freed block (a zero
+        // at byte 8). That heap corruption crashed SelfCollisionGles.FoldingCloth... in malloc under
+        // load. Without rasterizer threads the fence is signalled on the caller: no race, the same
+        // images. A run that sets LP_NUM_THREADS keeps its value.
+        setenv("LP_NUM_THREADS", "0", 0);
         auto get_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
         if (!get_display) return "eglGetPlatformDisplayEXT missing";
         display_ = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);

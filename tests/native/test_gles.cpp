@@ -7,7 +7,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include "drape_test_util.h"
@@ -38,6 +41,22 @@ float max_abs_diff(const std::vector<float>& a, const std::vector<float>& b) {
 }
 
 }  // namespace
+
+// The fixture runs Mesa's llvmpipe without rasterizer threads (HeadlessGles::create: Mesa 22.3
+// frees a fence that its last rasterizer thread is still signalling, which corrupted the heap under
+// load). None of this process's threads is one (llvmpipe names them llvmpipe-N, under lavapipe
+// too), unless the run asked for them.
+TEST_F(Gles, LlvmpipeRunsWithoutRasterizerThreads) {
+    const char* asked = std::getenv("LP_NUM_THREADS");
+    if (asked && std::strcmp(asked, "0") != 0) GTEST_SKIP() << "the run set LP_NUM_THREADS=" << asked;
+    std::string rasterizers;
+    for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
+        std::string name;
+        std::getline(std::ifstream(task.path() / "comm"), name);
+        if (name.rfind("llvmpipe-", 0) == 0) rasterizers += " " + name;
+    }
+    EXPECT_EQ(rasterizers, "") << "renderer " << reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+}
 
 TEST_F(Gles, AvailableOnlyWithAContext) {
     uint32_t available = 0;
