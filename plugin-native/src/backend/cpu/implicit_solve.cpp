@@ -373,6 +373,7 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     }
     frames_.assign(size_t(n) * nb.slots * 4, 0.0f);
     in_contact_.reserve(n);
+    held_.assign(n, glm::vec3(0.0f));
     block_sum_.assign((n + kBlock - 1) / kBlock, 0.0);
     block_shrink_.assign(block_sum_.size(), 0.0f);
     coarse_.build(topo, x);
@@ -401,14 +402,16 @@ double ImplicitSolve::over_blocks(ThreadPool* pool, Fn&& fn) {
 uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* start, Particle* target,
                               Particle* iterate, uint32_t max_iterations, float tolerance, ThreadPool* pool,
                               const glm::vec3* contact_normal) {
+    for (uint32_t i : in_contact_) held_[i] = glm::vec3(0.0f);
     in_contact_.clear();
     if (contact_normal)
         for (uint32_t i = 0; i < uint32_t(r_.size()); ++i)
             if (contact_normal[i] != glm::vec3(0.0f)) in_contact_.push_back(i);
     normal_ = in_contact_.empty() ? nullptr : contact_normal;
     // r at the iterate, and r . p when p is given (the line search's slope at the new point); with
-    // blocks, also D (block_inv_) there, with frames the springs' frames_. At a contact r loses its
-    // inward part (p has none, so r.p loses that part's share).
+    // blocks, also D (block_inv_) there, with frames the springs' frames_. At a contact that holds the
+    // particle (pulled inwards, not moved outwards: held_) r loses its inward part (p has none, so
+    // r.p loses that part's share).
     const kernels::SpringFrames frames{frames_.data(), c.stride};
     const kernels::CountedSprings counted{counted_count_.data(), counted_index_.data(), counted_rest_.data(),
                                           counted_k_.data()};
@@ -425,7 +428,9 @@ uint32_t ImplicitSolve::solve(const kernels::SubstepContext& c, const Particle* 
         for (uint32_t i : in_contact_) {
             const glm::vec3 n = normal_[i];
             const float inward = glm::dot(glm::vec3(r_[i]), n);
-            if (inward >= 0.0f) continue;
+            const bool hold = inward < 0.0f && glm::dot(glm::vec3(iterate[i]), n) <= 0.0f;
+            held_[i] = hold ? n : glm::vec3(0.0f);
+            if (!hold) continue;
             r_[i] -= Particle(inward * n, 0.0f);
             if (p) rp -= double(inward) * double(glm::dot(n, glm::vec3(p[i])));
         }
@@ -704,7 +709,7 @@ ImplicitSolve::Dots ImplicitSolve::back_substitute(uint32_t first, uint32_t last
             glm::vec3 zi = with_blocks_ ? v + block_inv_[i] * glm::vec3(r[i]) : v;  // A^-1 r (+ D^-1 r)
             if (with_coarse_) zi += coarse_.at(i);
             if (with_levels_) zi += levels_.at(i);
-            if (normal_) zi -= std::min(0.0f, glm::dot(zi, normal_[i])) * normal_[i];  // no step inwards at a contact
+            if (normal_) zi -= std::min(0.0f, glm::dot(zi, held_[i])) * held_[i];  // no step inwards at a contact
             z[i] = Particle(zi, 0.0f);
             dots.rz += double(glm::dot(zi, glm::vec3(r[i])));
             dots.z_r_prev += double(glm::dot(zi, glm::vec3(r_prev[i])));

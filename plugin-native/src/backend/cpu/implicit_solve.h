@@ -100,7 +100,10 @@ class ImplicitSolve {
     /// threads to use, or null for the calling thread alone (same bits). contact_normal (or null):
     /// per particle the outward normal of a frictionless collider it touched in the previous
     /// substep, else 0. The solve does not move such a particle inwards (its residual and search
-    /// directions lose their inward part, Baraff and Witkin 1998 sec. 5.3): the springs then pull its
+    /// directions lose their inward part, Baraff and Witkin 1998 sec. 5.3) while it is pulled inwards
+    /// and has not moved outwards in this solve (n . d <= 0); once off the surface it is free: held there too,
+    /// the steps pushed it out with nothing pulling it back, and that move became velocity (a cloth
+    /// sliding on a frictionless sphere went from 1.1 to 4.7 J, launched upwards). The springs then pull its
     /// neighbours and slide it along the surface, instead of pressing it into the collider for the
     /// collision pass to undo, which held a frictionless cloth on a box edge. Frictional contacts are
     /// left to the collision pass, whose friction grows with that push. Does not allocate.
@@ -207,6 +210,7 @@ class ImplicitSolve {
     uint32_t reuses_ = 0;               ///< solves that started with them since they were assembled
     std::vector<uint32_t> in_contact_;       ///< particles with a contact normal in this solve
     const glm::vec3* normal_ = nullptr;  ///< this solve's contact normals, null if none
+    std::vector<glm::vec3> held_;        ///< per particle its normal while the contact holds it (see solve), else 0
 };
 
 }  // namespace drape
