@@ -138,6 +138,8 @@ protected:
     void refresh_derived();  // after params or masses change
     /// The backend's own data derived from params and masses (refresh_derived ends with it).
     virtual void refresh_backend() {}
+    /// The backend's own data derived from the colliders (set_colliders ends with it).
+    virtual void refresh_colliders() {}
     /// Whole-metre shift that brings `reference` (a local position) back near the origin; zero
     /// while it is within kRecentreDistance (core/params.h) on every axis.
     static glm::vec3 recentre_shift(const glm::vec3& reference);

@@ -61,6 +61,7 @@ void Cloth::set_colliders(const drape_collider* colliders, uint32_t count) {
     }
     ix_.colliders.swap(next);
     if (changed) wake();
+    refresh_colliders();
 }
 
 // ---- self-collision (the CPU step's stage: backend/cpu/cpu_collide.cpp) ---------------------

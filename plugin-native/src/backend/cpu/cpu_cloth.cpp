@@ -52,6 +52,20 @@ void CpuCloth::refresh_backend() {
     } else {
         implicit_.clear();
     }
+    refresh_friction();
+}
+
+void CpuCloth::refresh_colliders() { refresh_friction(); }
+
+void CpuCloth::refresh_friction() {
+    if (params_.model != DRAPE_MODEL_IMPLICIT || params_.substeps != 0) return;
+    bool friction = false;
+    for (const ColliderState& c : ix_.colliders) friction = friction || c.friction > 0.0f;
+    if (!friction) return;
+    const float h = (last_dt_ > 0 ? last_dt_ : kDefaultH) / float(kFrictionSubstepsImplicit);
+    if (implicit_fine_.inputs_changed(params_, x_.data(), topo_.particle_count) || implicit_fine_.h() == 0 ||
+        !(std::fabs(implicit_fine_.h() / h - 1.0f) < kImplicitRefactor))
+        implicit_fine_.factor(topo_, params_, x_.data(), h);
 }
 
 template <class KinematicAt>
@@ -64,9 +78,13 @@ void CpuCloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& k
     Particle* iterate = spare2_.data();
     for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_predict(c, cur, disp, target, iterate, b, e); });
     for (uint32_t k : kinematic_) target[k] = iterate[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
-    if (!(std::fabs(implicit_.h() / last_h_ - 1.0f) < kImplicitRefactor)) factor_implicit(last_h_);  // dt changed a lot
-    if (fresh_) implicit_.state_set();
-    const uint32_t taken = implicit_.solve(c, cur, target, iterate, iterations_, kImplicitTolerance,
+    // The finer factor where it fits this substep (friction_substeps), else the planned one.
+    const bool fine = implicit_fine_.h() > 0 && std::fabs(c.h / implicit_fine_.h() - 1.0f) < kImplicitRefactor;
+    ImplicitSolve& implicit = fine ? implicit_fine_ : implicit_;
+    if (!fine && !(std::fabs(implicit_.h() / last_h_ - 1.0f) < kImplicitRefactor)) factor_implicit(last_h_);  // dt changed a lot
+    if (fresh_ || &implicit != implicit_last_) implicit.state_set();  // what the other one kept is stale
+    implicit_last_ = &implicit;
+    const uint32_t taken = implicit.solve(c, cur, target, iterate, iterations_, kImplicitTolerance,
                                            backend_ == DRAPE_BACKEND_CPU_THREADED ? &world_.pool() : nullptr,
                                            contact_fresh_ ? contact_normal_.data() : nullptr);
     contact_fresh_ = false;
@@ -121,8 +139,11 @@ void CpuCloth::begin(float dt) {
     // IMPLICIT's factor follows the planned substep, not one a passing collider shortened for a
     // frame or two (refactoring allocates and costs many steps).
     last_h_ = dt / float(substeps_);
+    last_dt_ = dt;
     if (params_.substeps == 0 && !ix_.colliders.empty())
         substeps_ = std::min(kMaxSubsteps, std::max(substeps_, collider_substeps(dt)));
+    if (params_.substeps == 0 && implicit_fine_.h() > 0 && !ix_.colliders.empty())
+        substeps_ = std::min(kMaxSubsteps, std::max(substeps_, friction_substeps(dt)));
     if (params_.substeps == 0 && sc_.enabled)
         substeps_ = std::min(kMaxSubsteps, std::max(substeps_, self_collision_substeps(dt)));
     h_ = dt / float(substeps_);
@@ -294,6 +315,7 @@ Result CpuCloth::finish(float dt, const VerifyPartial& total) {
         h_prev_ = backup_h_prev_;
         fresh_ = backup_fresh_;
         implicit_.state_set();  // what its solves kept belongs to the step rolled back
+        implicit_fine_.state_set();
         // kinematic_target_ keeps the requested pin and grab moves: the next step makes them.
         ++stats_.unstable_steps;
         interaction_end_step(dt, true);

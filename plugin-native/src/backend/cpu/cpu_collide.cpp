@@ -56,18 +56,49 @@ float lowest_above_plane(const Aabb& b, const glm::vec3& p, const glm::vec3& n) 
 
 }  // namespace
 
-uint32_t CpuCloth::collider_substeps(float dt) const {
-    // Near: the collider's bounds over the step touch the cloth's, grown by the cloth's fastest
-    // particle's travel over the step (its last substep's displacement scaled to dt).
+namespace {
+
+/// The cloth's bounds over a step of dt: its positions, grown by its fastest particle's travel over
+/// the step (its last substep's displacement d scaled to dt).
+Aabb step_bounds(const std::vector<kernels::Particle>& x, const std::vector<kernels::Particle>& d, float h_prev,
+                 float dt) {
     Aabb cloth;
     float reach = 0;
-    for (uint32_t i = 0; i < topo_.particle_count; ++i) {
-        cloth.add(glm::vec3(x_[i]));
-        reach = std::max(reach, glm::length(glm::vec3(d_[i])));
+    for (size_t i = 0; i < x.size(); ++i) {
+        cloth.add(glm::vec3(x[i]));
+        reach = std::max(reach, glm::length(glm::vec3(d[i])));
     }
-    if (h_prev_ > 0) reach *= dt / h_prev_;
+    if (h_prev > 0) reach *= dt / h_prev;
     cloth.lo -= reach;
     cloth.hi += reach;
+    return cloth;
+}
+
+}  // namespace
+
+uint32_t CpuCloth::friction_substeps(float dt) const {
+    const Aabb cloth = step_bounds(x_, d_, h_prev_, dt);
+    for (const ColliderState& c : ix_.colliders) {
+        if (!(c.friction > 0.0f)) continue;
+        const CollideShape s = c.at_substep(0, 1);
+        bool near;
+        if (c.shape == DRAPE_COLLIDER_PLANE) {
+            near = lowest_above_plane(cloth, s.pos0, s.rot0 * glm::vec3(0, 1, 0)) < s.margin ||
+                   lowest_above_plane(cloth, s.pos1, s.rot1 * glm::vec3(0, 1, 0)) < s.margin;
+        } else {
+            Aabb b;
+            add_shape_bounds(b, s, s.pos0, s.rot0);
+            add_shape_bounds(b, s, s.pos1, s.rot1);
+            near = b.overlaps(cloth);
+        }
+        if (near) return kFrictionSubstepsImplicit;
+    }
+    return 1;
+}
+
+uint32_t CpuCloth::collider_substeps(float dt) const {
+    // Near: the collider's bounds over the step touch the cloth's over the step (step_bounds).
+    const Aabb cloth = step_bounds(x_, d_, h_prev_, dt);
     uint32_t needed = 1;
     for (const ColliderState& c : ix_.colliders) {
         const float travel = glm::length(c.pos_end - c.pos_start);
