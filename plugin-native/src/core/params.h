@@ -42,7 +42,7 @@ constexpr float kColliderTravelPerSubstep = 0.5f;
 /// went from 1.5 J to 17 J at the impact and kept gaining up to 6 J at rest on it, and a cloth over a
 /// box corner (33^2, friction 1) gained 11 J at rest. At 8 they gained 0.03 J and 0.7 J, at 16 0.004
 /// and 0.02 J (friction 0.05 to 1; the drop never above its 1.47 J at the start). Friction inside the
-/// solve would be the real fix (tried: see the bench README, issue 10).
+/// solve would be the real fix (tried: tests/bench/README.md, "IMPLICIT with a frictional collider").
 constexpr uint32_t kFrictionSubstepsImplicit = 16;
 constexpr uint32_t kAutoIterationsImplicit = 4;
 /// IMPLICIT: a substep's solve stops after a step that released less than kImplicitTolerance^2
