@@ -58,10 +58,10 @@ void CpuCloth::refresh_backend() {
 void CpuCloth::refresh_colliders() { refresh_friction(); }
 
 void CpuCloth::refresh_friction() {
-    if (params_.model != DRAPE_MODEL_IMPLICIT || params_.substeps != 0) return;
     bool friction = false;
     for (const ColliderState& c : ix_.colliders) friction = friction || c.friction > 0.0f;
-    if (!friction) return;
+    fine_ready_ = friction && params_.model == DRAPE_MODEL_IMPLICIT && params_.substeps == 0;
+    if (!fine_ready_) return;
     const float h = (last_dt_ > 0 ? last_dt_ : kDefaultH) / float(kFrictionSubstepsImplicit);
     if (implicit_fine_.inputs_changed(params_, x_.data(), topo_.particle_count) || implicit_fine_.h() == 0 ||
         !(std::fabs(implicit_fine_.h() / h - 1.0f) < kImplicitRefactor))
@@ -79,7 +79,7 @@ void CpuCloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& k
     for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_predict(c, cur, disp, target, iterate, b, e); });
     for (uint32_t k : kinematic_) target[k] = iterate[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
     // The finer factor where it fits this substep (friction_substeps), else the planned one.
-    const bool fine = implicit_fine_.h() > 0 && std::fabs(c.h / implicit_fine_.h() - 1.0f) < kImplicitRefactor;
+    const bool fine = fine_ready_ && std::fabs(c.h / implicit_fine_.h() - 1.0f) < kImplicitRefactor;
     ImplicitSolve& implicit = fine ? implicit_fine_ : implicit_;
     if (!fine && !(std::fabs(implicit_.h() / last_h_ - 1.0f) < kImplicitRefactor)) factor_implicit(last_h_);  // dt changed a lot
     if (fresh_ || &implicit != implicit_last_) implicit.state_set();  // what the other one kept is stale
@@ -142,8 +142,7 @@ void CpuCloth::begin(float dt) {
     last_dt_ = dt;
     if (params_.substeps == 0 && !ix_.colliders.empty())
         substeps_ = std::min(kMaxSubsteps, std::max(substeps_, collider_substeps(dt)));
-    if (params_.substeps == 0 && implicit_fine_.h() > 0 && !ix_.colliders.empty())
-        substeps_ = std::min(kMaxSubsteps, std::max(substeps_, friction_substeps(dt)));
+    if (fine_ready_) substeps_ = std::min(kMaxSubsteps, std::max(substeps_, friction_substeps(dt)));
     if (params_.substeps == 0 && sc_.enabled)
         substeps_ = std::min(kMaxSubsteps, std::max(substeps_, self_collision_substeps(dt)));
     h_ = dt / float(substeps_);

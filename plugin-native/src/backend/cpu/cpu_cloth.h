@@ -90,10 +90,11 @@ private:
     bool contact_fresh_ = false;
     ImplicitSolve implicit_;
     /// IMPLICIT's solve at kFrictionSubstepsImplicit substeps a step (friction_substeps), factored
-    /// outside the step (refresh_friction) while a collider has friction: A built for the planned
-    /// substep is 16 times too light for one a quarter as long, and 4 iterations on it let the cloth
-    /// slide off a sphere with friction 1.
+    /// outside the step (refresh_friction) while a collider has friction: in A built for the planned
+    /// substep (dt/2) the mass term is too small by (planned / actual substep)^2, and with 8 substeps
+    /// on it (16 times) 4 iterations let the cloth slide off a sphere with friction 1.
     ImplicitSolve implicit_fine_;
+    bool fine_ready_ = false;  ///< implicit_fine_ is factored for these params and a collider has friction
     const ImplicitSolve* implicit_last_ = nullptr;  ///< the solve the last substep used
     float last_dt_ = 0;  ///< step of the last step, s (0: none yet)
     void refresh_colliders() override;
