@@ -8,6 +8,8 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include "backend/cpu/kernels_simd.h"
+
 namespace drape {
 
 namespace {
@@ -219,6 +221,45 @@ uint32_t find_column(const std::vector<uint32_t>& col, uint32_t begin, uint32_t 
     return uint32_t(std::lower_bound(col.begin() + begin, col.begin() + end, b) - col.begin());
 }
 
+constexpr uint32_t kLanes = 4;  ///< nodes per group of the V-cycle's float copy (CoarseLevels::Level)
+
+/// y = B x for the four nodes' symmetric blocks b (per component four lanes: xx, yy, zz, xy, xz, yz) and
+/// x, four lanes each; y -= B x when kSubtract. Each lane does the same float operations in the same
+/// order on either path.
+template <bool kSubtract>
+void block_product(const float* b, const float* x, float* y) {
+#if DRAPE_SIMD
+    using kernels::simd::F4;
+    F4 c[6], v[3], out[3];
+    std::memcpy(c, b, sizeof c);
+    std::memcpy(v, x, sizeof v);
+    std::memcpy(out, y, sizeof out);
+    const F4 p[3] = {c[0] * v[0] + c[3] * v[1] + c[4] * v[2], c[3] * v[0] + c[1] * v[1] + c[5] * v[2],
+                     c[4] * v[0] + c[5] * v[1] + c[2] * v[2]};
+    for (int k = 0; k < 3; ++k) out[k] = kSubtract ? out[k] - p[k] : p[k];
+    std::memcpy(y, out, sizeof out);
+#else
+    for (uint32_t l = 0; l < kLanes; ++l) {
+        const float* c = b + l;
+        const float v0 = x[l], v1 = x[kLanes + l], v2 = x[2 * kLanes + l];
+        const float p[3] = {c[0] * v0 + c[12] * v1 + c[16] * v2, c[12] * v0 + c[4] * v1 + c[20] * v2,
+                            c[16] * v0 + c[20] * v1 + c[8] * v2};
+        for (uint32_t k = 0; k < 3; ++k) y[k * kLanes + l] = kSubtract ? y[k * kLanes + l] - p[k] : p[k];
+    }
+#endif
+}
+
+/// The four records at idx as x, y and z, four lanes each (out[3 * kLanes]).
+void gather_lanes(const kernels::Particle* p, const uint32_t* idx, float* out) {
+#if DRAPE_SIMD
+    const kernels::simd::V3 v = kernels::simd::gather(p, idx);
+    std::memcpy(out, &v, 3 * kLanes * sizeof(float));
+#else
+    for (uint32_t l = 0; l < kLanes; ++l)
+        for (int k = 0; k < 3; ++k) out[k * kLanes + l] = p[idx[l]][k];
+#endif
+}
+
 }  // namespace
 
 void CoarseLevels::build(const Topology& topo, const Particle* x) {
@@ -285,7 +326,8 @@ void CoarseLevels::build(const Topology& topo, const Particle* x) {
         level.diag.assign(level.count, Block());
         level.off.assign(level.col.size(), Block());
         level.diag_inv.assign(level.count, Block());
-        for (std::vector<glm::dvec3>* v : {&level.r, &level.e, &level.t}) v->assign(level.count, glm::dvec3(0.0));
+        const uint32_t padded = (level.count + kLanes - 1) / kLanes * kLanes;
+        for (std::vector<Particle>* v : {&level.r, &level.e, &level.t}) v->assign(padded, Particle(0.0f));
         if (level.count <= kCoarsestNodes) break;
         const std::vector<glm::ivec3> fine = std::move(coord);
         coord.clear();
@@ -311,6 +353,22 @@ void CoarseLevels::build(const Topology& topo, const Particle* x) {
         for (uint32_t a = 0; a < below.count; ++a) next.child[put[below.parent[a]]++] = a;
     }
     levels_.back().parent.clear();
+    for (size_t l = 0; l + 1 < levels_.size(); ++l) {  // the V-cycle's float copy (the coarsest is solved densely)
+        Level& level = levels_[l];
+        level.width = 1;
+        for (uint32_t a = 0; a < level.count; ++a)
+            level.width = std::max(level.width, 1 + level.row_start[a + 1] - level.row_start[a]);
+        const uint32_t groups = uint32_t(level.r.size()) / kLanes;
+        level.cycle_col.resize(size_t(groups) * level.width * kLanes);
+        for (uint32_t a = 0; a < groups * kLanes; ++a)
+            for (uint32_t s = 0; s < level.width; ++s) {
+                const uint32_t e = a < level.count ? level.row_start[a] + s - 1 : 0;
+                const bool off = s > 0 && a < level.count && e < level.row_start[a + 1];
+                level.cycle_col[(size_t(a / kLanes) * level.width + s) * kLanes + a % kLanes] = off ? level.col[e] : a;
+            }
+        level.cycle_block.assign(size_t(groups) * level.width * 6 * kLanes, 0.0f);
+        level.cycle_inv.assign(size_t(groups) * 6 * kLanes, 0.0f);
+    }
     const Level& first = levels_[0];
     slot_off_.assign(size_t(n) * nb.slots, kInside);
     for (uint32_t i = 0; i < n; ++i)
@@ -385,6 +443,20 @@ bool CoarseLevels::factor(ThreadPool* pool) {
             }
         });
     }
+    for (size_t l = 0; l + 1 < levels_.size(); ++l) {  // the V-cycle's float copy
+        Level& level = levels_[l];
+        auto put = [&](std::vector<float>& to, size_t group_entry, uint32_t lane, const Block& b) {
+            for (int k = 0; k < 6; ++k) to[(group_entry * 6 + k) * kLanes + lane] = float(b.v[k]);
+        };
+        for (uint32_t a = 0; a < level.count; ++a) {
+            const size_t g = a / kLanes;
+            const uint32_t lane = a % kLanes;
+            put(level.cycle_block, g * level.width, lane, level.diag[a]);
+            for (uint32_t e = level.row_start[a]; e < level.row_start[a + 1]; ++e)
+                put(level.cycle_block, g * level.width + 1 + (e - level.row_start[a]), lane, level.off[e]);
+            put(level.cycle_inv, g, lane, level.diag_inv[a]);
+        }
+    }
     const Level& last = levels_.back();
     const uint32_t m = 3 * last.count;
     std::fill(dense_.begin(), dense_.end(), 0.0);
@@ -404,47 +476,69 @@ void CoarseLevels::apply(const Particle* r, ThreadPool* pool) {
     Level& level = levels_[0];
     over_ranges(level.count >= kMinParallelNodes ? pool : nullptr, level.count, [&](uint32_t begin, uint32_t end) {
         for (uint32_t a = begin; a < end; ++a) {
-            glm::dvec3 sum(0.0);
-            for (uint32_t k = member_start_[a]; k < member_start_[a + 1]; ++k)
-                sum += glm::dvec3(glm::vec3(r[member_[k]]));
-            level.r[a] = sum;
+            glm::vec3 sum(0.0f);
+            for (uint32_t k = member_start_[a]; k < member_start_[a + 1]; ++k) sum += glm::vec3(r[member_[k]]);
+            level.r[a] = Particle(sum, 0.0f);
         }
     });
     cycle(0, pool);
 }
 
 void CoarseLevels::cycle(size_t l, ThreadPool* pool) {
-    // Node by node on the pool (each node's value does not depend on the split), except the
-    // restriction's sums (a few additions per node) and the coarsest solve.
+    // Group by group of kLanes nodes on the pool (each node's value does not depend on the split),
+    // except the restriction's sums (a few additions per node) and the coarsest solve.
     Level& level = levels_[l];
-    auto each_node = [&](auto&& fn) {
-        over_ranges(level.count >= kMinParallelNodes ? pool : nullptr, level.count, [&](uint32_t begin, uint32_t end) {
-            for (uint32_t a = begin; a < end; ++a) fn(a);
-        });
-    };
     if (l + 1 == levels_.size()) {
         for (uint32_t a = 0; a < level.count; ++a)
             for (int k = 0; k < 3; ++k) dense_rhs_[3 * a + k] = level.r[a][k];
         dense_solve(dense_.data(), dense_rhs_.data(), 3 * level.count);
         for (uint32_t a = 0; a < level.count; ++a)
-            level.e[a] = glm::dvec3(dense_rhs_[3 * a], dense_rhs_[3 * a + 1], dense_rhs_[3 * a + 2]);
+            level.e[a] = Particle(float(dense_rhs_[3 * a]), float(dense_rhs_[3 * a + 1]), float(dense_rhs_[3 * a + 2]), 0.0f);
         return;
     }
+    const uint32_t groups = uint32_t(level.r.size()) / kLanes;
+    auto each_group = [&](auto&& fn) {
+        over_ranges(level.count >= kMinParallelNodes ? pool : nullptr, groups, [&](uint32_t begin, uint32_t end) {
+            for (uint32_t g = begin; g < end; ++g) fn(g);
+        });
+    };
+    auto store = [&](std::vector<Particle>& to, uint32_t g, const float* v) {
+        for (uint32_t l = 0; l < kLanes; ++l)
+            to[g * kLanes + l] = Particle(v[l], v[kLanes + l], v[2 * kLanes + l], 0.0f);
+    };
     // t = r - H_l e
-    auto residual = [&](uint32_t a) {
-        glm::dvec3 t = level.r[a] - level.diag[a] * level.e[a];
-        for (uint32_t e = level.row_start[a]; e < level.row_start[a + 1]; ++e) t -= level.off[e] * level.e[level.col[e]];
-        level.t[a] = t;
+    auto residual = [&](uint32_t g) {
+        float t[3 * kLanes], e[3 * kLanes];
+        gather_lanes(level.r.data(), &level.cycle_col[size_t(g) * level.width * kLanes], t);  // entry 0: the nodes
+        for (uint32_t s = 0; s < level.width; ++s) {
+            const size_t entry = size_t(g) * level.width + s;
+            gather_lanes(level.e.data(), &level.cycle_col[entry * kLanes], e);
+            block_product<true>(&level.cycle_block[entry * 6 * kLanes], e, t);
+        }
+        store(level.t, g, t);
+    };
+    // e (+)= kSmoothing D_l^-1 v
+    auto smooth = [&](uint32_t g, const std::vector<Particle>& v, bool add) {
+        float x[3 * kLanes], y[3 * kLanes];
+        gather_lanes(v.data(), &level.cycle_col[size_t(g) * level.width * kLanes], x);
+        block_product<false>(&level.cycle_inv[size_t(g) * 6 * kLanes], x, y);
+        for (uint32_t l = 0; l < kLanes; ++l) {
+            Particle& e = level.e[g * kLanes + l];
+            const Particle step(kSmoothing * y[l], kSmoothing * y[kLanes + l], kSmoothing * y[2 * kLanes + l], 0.0f);
+            e = add ? e + step : step;
+        }
     };
     Level& coarse = levels_[l + 1];
-    each_node([&](uint32_t a) { level.e[a] = kSmoothing * (level.diag_inv[a] * level.r[a]); });
-    each_node(residual);
-    std::fill(coarse.r.begin(), coarse.r.end(), glm::dvec3(0.0));
+    each_group([&](uint32_t g) { smooth(g, level.r, false); });
+    each_group(residual);
+    std::fill(coarse.r.begin(), coarse.r.end(), Particle(0.0f));
     for (uint32_t a = 0; a < level.count; ++a) coarse.r[level.parent[a]] += level.t[a];
     cycle(l + 1, pool);
-    each_node([&](uint32_t a) { level.e[a] += coarse.e[level.parent[a]]; });
-    each_node(residual);
-    each_node([&](uint32_t a) { level.e[a] += kSmoothing * (level.diag_inv[a] * level.t[a]); });
+    each_group([&](uint32_t g) {
+        for (uint32_t a = g * kLanes; a < std::min(level.count, (g + 1) * kLanes); ++a) level.e[a] += coarse.e[level.parent[a]];
+    });
+    each_group(residual);
+    each_group([&](uint32_t g) { smooth(g, level.t, true); });
 }
 
 }  // namespace drape

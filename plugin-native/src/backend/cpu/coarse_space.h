@@ -104,14 +104,15 @@ class CoarseLevels {
     /// false when there are no levels or a matrix is not positive definite (then it must not be used).
     /// pool: threads for the per-node work (null: the caller alone; the same bits either way).
     bool factor(ThreadPool* pool);
-    /// One V-cycle on level 1's share of r (pool as in factor).
+    /// One V-cycle on level 1's share of r (pool as in factor), in float: in double its block products
+    /// were ~9 % of a step at rest (65^2 curtain).
     void apply(const Particle* r, ThreadPool* pool);
     /// The correction at particle i (0 on kinematic particles).
     glm::vec3 at(uint32_t i) const { return cell_[i] < 0 ? glm::vec3(0.0f) : glm::vec3(levels_[0].e[cell_[i]]); }
 
   private:
     static constexpr uint32_t kCoarsestNodes = 32;  ///< solved densely: 96 unknowns, ~30 k multiply-adds
-    static constexpr double kSmoothing = 2.0 / 3.0;  ///< Jacobi weight, below 2 / lambda_max(D_l^-1 H_l)
+    static constexpr float kSmoothing = 2.0f / 3.0f;  ///< Jacobi weight, below 2 / lambda_max(D_l^-1 H_l)
     /// A level with fewer nodes runs on the caller alone: a pass over it is a few microseconds (a node
     /// costs ~100-250 instructions), about what waking and joining the workers costs.
     static constexpr uint32_t kMinParallelNodes = 256;
@@ -123,7 +124,14 @@ class CoarseLevels {
         std::vector<uint32_t> row_start, col;      ///< off-diagonal blocks by rows, columns sorted
         std::vector<Block> diag, off;
         std::vector<Block> diag_inv;               ///< smoother
-        std::vector<glm::dvec3> r, e, t;           ///< residual, correction, scratch
+        // The V-cycle's copy of H_l and the smoother in float, four nodes at once (the last group
+        // padded with nodes whose blocks are 0): per group of four and entry (the diagonal first,
+        // then the row's off-diagonal blocks, rows shorter than width padded with 0 blocks at the
+        // node itself) the four columns, and per component (xx, yy, zz, xy, xz, yz) four lanes.
+        uint32_t width = 0;
+        std::vector<uint32_t> cycle_col;
+        std::vector<float> cycle_block, cycle_inv;
+        std::vector<Particle> r, e, t;             ///< residual, correction, scratch (padded to the groups)
     };
     std::vector<Level> levels_;          ///< [0]: level 1 (cells of particles)
     std::vector<int32_t> cell_;          ///< per particle its level-1 node, -1 if kinematic
