@@ -78,6 +78,26 @@ drape_cloth* horizontal_cloth(drape_world* w, uint32_t n, float size, float cx, 
     return make_grid(w, g, 0.2f, backend, model);
 }
 
+// The sphere drop of the energy tests: a free 21^2 cloth, 1 x 1 m, 0.1 kg, IMPLICIT, 1.5 m up over a
+// sphere of radius 0.25 (margin 5 mm) with this friction.
+drape_cloth* sphere_drop(drape_world* w, drape_backend backend, float friction) {
+    drape_grid_desc g = grid_desc(21, 21, 1.0f, 1.0f);
+    g.origin[1] = 1.5f;
+    drape_cloth* c = make_grid(w, g, 0.1f, backend, DRAPE_MODEL_IMPLICIT);
+    drape_collider sphere = collider(DRAPE_COLLIDER_SPHERE, 0.5f, 0.5f, -0.5f, 0.25f);
+    sphere.margin = 0.005f;
+    sphere.friction = friction;
+    EXPECT_DRAPE_OK(drape_cloth_set_colliders(c, &sphere, 1));
+    return c;
+}
+
+// Kinetic + gravity + spring energy from the stats (J).
+float total_energy(drape_cloth* c) {
+    drape_stats st{sizeof st};
+    EXPECT_DRAPE_OK(drape_cloth_get_stats(c, &st));
+    return st.kinetic_energy + st.potential_energy + st.elastic_energy;
+}
+
 }  // namespace
 
 // A cloth dropped on each shape comes to rest on it: no vertex ends closer to the surface than the
@@ -205,19 +225,11 @@ TEST(Collision, FrictionHoldsAClothOnABoxCorner) {
 TEST(Collision, FrictionlessSphereGivesTheClothNoEnergy) {
     for (drape_backend backend : {DRAPE_BACKEND_CPU, DRAPE_BACKEND_CPU_THREADED}) {
         WorldPtr w = make_world();
-        drape_grid_desc g = grid_desc(21, 21, 1.0f, 1.0f);
-        g.origin[1] = 1.5f;
-        drape_cloth* c = make_grid(w.get(), g, 0.1f, backend, DRAPE_MODEL_IMPLICIT);
-        drape_collider sphere = collider(DRAPE_COLLIDER_SPHERE, 0.5f, 0.5f, -0.5f, 0.25f);
-        sphere.margin = 0.005f;
-        sphere.friction = 0.0f;
-        ASSERT_DRAPE_OK(drape_cloth_set_colliders(c, &sphere, 1));
+        drape_cloth* c = sphere_drop(w.get(), backend, 0.0f);
         float after_impact = 0, most = -INFINITY, end_y = -INFINITY;
         for (int f = 0; f < 240; ++f) {  // 4 s
             ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
-            drape_stats st{sizeof st};
-            ASSERT_DRAPE_OK(drape_cloth_get_stats(c, &st));
-            const float total = st.kinetic_energy + st.potential_energy + st.elastic_energy;
+            const float total = total_energy(c);
             if (f == 35) after_impact = total;  // 0.6 s
             if (f >= 35) most = std::max(most, total);
         }
@@ -233,29 +245,21 @@ TEST(Collision, FrictionlessSphereGivesTheClothNoEnergy) {
 
 // The same drop on a sphere with friction: once the impact is over the total energy only falls
 // (never more than 0.02 J above its lowest value so far), and friction holds the cloth on the
-// sphere (its centre stays on top and moves less than 2 mm from 2 s to 4 s). The collision pass's position-based friction after IMPLICIT's solve moved each contact
-// back along the surface by what the solve had moved it, stretching the springs the solve had
-// balanced: at the default 2 substeps a frame the cloth went from 1.5 J to 17 J at the impact and,
-// at rest on the sphere, gained up to 3.5 J (friction 1) while its corners kept swinging
-// (kFrictionSubstepsImplicit).
+// sphere (its centre stays on top and moves less than 2 mm from 2 s to 4 s). The collision pass's
+// position-based friction after IMPLICIT's solve moved each contact back along the surface by what
+// the solve had moved it, stretching the springs the solve had balanced: at the default 2 substeps
+// a frame the cloth went from 1.5 J to 17 J at the impact and, at rest on the sphere, gained up to
+// 3.5 J (friction 1) while its corners kept swinging (kFrictionSubstepsImplicit).
 TEST(Collision, FrictionalSphereGivesTheClothNoEnergy) {
     for (float friction : {0.5f, 1.0f})
     for (drape_backend backend : {DRAPE_BACKEND_CPU, DRAPE_BACKEND_CPU_THREADED}) {
         WorldPtr w = make_world();
-        drape_grid_desc g = grid_desc(21, 21, 1.0f, 1.0f);
-        g.origin[1] = 1.5f;
-        drape_cloth* c = make_grid(w.get(), g, 0.1f, backend, DRAPE_MODEL_IMPLICIT);
-        drape_collider sphere = collider(DRAPE_COLLIDER_SPHERE, 0.5f, 0.5f, -0.5f, 0.25f);
-        sphere.margin = 0.005f;
-        sphere.friction = friction;
-        ASSERT_DRAPE_OK(drape_cloth_set_colliders(c, &sphere, 1));
+        drape_cloth* c = sphere_drop(w.get(), backend, friction);
         const uint32_t mid = 10 * 21 + 10;
         float lowest = INFINITY, rise = 0, most = 0, at2[3] = {};
         for (int f = 0; f < 240; ++f) {  // 4 s
             ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
-            drape_stats st{sizeof st};
-            ASSERT_DRAPE_OK(drape_cloth_get_stats(c, &st));
-            const float total = st.kinetic_energy + st.potential_energy + st.elastic_energy;
+            const float total = total_energy(c);
             most = std::max(most, total);
             if (f == 119) std::memcpy(at2, &positions(c)[3 * mid], sizeof at2);
             if (f < 35) continue;  // the impact: 0.4 s, over by 0.6 s

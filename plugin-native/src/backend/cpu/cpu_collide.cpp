@@ -54,10 +54,6 @@ float lowest_above_plane(const Aabb& b, const glm::vec3& p, const glm::vec3& n) 
     return glm::dot(corner - p, n);
 }
 
-}  // namespace
-
-namespace {
-
 /// The cloth's bounds over a step of dt: its positions, grown by its fastest particle's travel over
 /// the step (its last substep's displacement d scaled to dt).
 Aabb step_bounds(const std::vector<kernels::Particle>& x, const std::vector<kernels::Particle>& d, float h_prev,
@@ -74,24 +70,25 @@ Aabb step_bounds(const std::vector<kernels::Particle>& x, const std::vector<kern
     return cloth;
 }
 
+/// Whether the shape over the substep (its start and end transforms, grown by its margin) may
+/// touch a cloth within these bounds.
+bool touches(const Aabb& cloth, const CollideShape& s) {
+    if (s.shape == DRAPE_COLLIDER_PLANE)
+        return lowest_above_plane(cloth, s.pos0, s.rot0 * glm::vec3(0, 1, 0)) < s.margin ||
+               lowest_above_plane(cloth, s.pos1, s.rot1 * glm::vec3(0, 1, 0)) < s.margin;
+    Aabb b;
+    add_shape_bounds(b, s, s.pos0, s.rot0);
+    add_shape_bounds(b, s, s.pos1, s.rot1);
+    return b.overlaps(cloth);
+}
+
 }  // namespace
 
 uint32_t CpuCloth::friction_substeps(float dt) const {
     const Aabb cloth = step_bounds(x_, d_, h_prev_, dt);
     for (const ColliderState& c : ix_.colliders) {
         if (!(c.friction > 0.0f)) continue;
-        const CollideShape s = c.at_substep(0, 1);
-        bool near;
-        if (c.shape == DRAPE_COLLIDER_PLANE) {
-            near = lowest_above_plane(cloth, s.pos0, s.rot0 * glm::vec3(0, 1, 0)) < s.margin ||
-                   lowest_above_plane(cloth, s.pos1, s.rot1 * glm::vec3(0, 1, 0)) < s.margin;
-        } else {
-            Aabb b;
-            add_shape_bounds(b, s, s.pos0, s.rot0);
-            add_shape_bounds(b, s, s.pos1, s.rot1);
-            near = b.overlaps(cloth);
-        }
-        if (near) return kFrictionSubstepsImplicit;
+        if (touches(cloth, c.at_substep(0, 1))) return kFrictionSubstepsImplicit;
     }
     return 1;
 }
@@ -158,17 +155,7 @@ void CpuCloth::collide(uint32_t sub) {
     shapes_.clear();
     for (const ColliderState& c : ix_.colliders) {
         const CollideShape s = c.at_substep(sub, substeps);
-        bool touches;
-        if (c.shape == DRAPE_COLLIDER_PLANE) {
-            touches = lowest_above_plane(cloth, s.pos0, s.rot0 * glm::vec3(0, 1, 0)) < s.margin ||
-                      lowest_above_plane(cloth, s.pos1, s.rot1 * glm::vec3(0, 1, 0)) < s.margin;
-        } else {
-            Aabb b;
-            add_shape_bounds(b, s, s.pos0, s.rot0);
-            add_shape_bounds(b, s, s.pos1, s.rot1);
-            touches = b.overlaps(cloth);
-        }
-        if (touches) shapes_.push_back(s);
+        if (touches(cloth, s)) shapes_.push_back(s);
     }
     if (shapes_.empty()) return;
     ix_.collide_tests += uint64_t(n) * shapes_.size();
