@@ -85,6 +85,21 @@ private:
     std::atomic<bool> stop_{false};
     std::mutex mutex_;
     std::condition_variable wake_;
+#ifdef DRAPE_POOL_TRACE
+    // Measurement build only (-DDRAPE_POOL_TRACE; tests/bench/README.md, "Where two threads' wall time
+    // goes"; two threads): per pass the TSC at publish, when the caller's chunks were done, when all
+    // were; per chunk its start, end and thread. Written to $DRAPE_POOL_TRACE.<pid>.<n> when the pool
+    // ends. DRAPE_POOL_SOLO=1: the worker never takes a chunk, so the caller runs every pass's chunks
+    // alone (the same passes on one core).
+    struct TraceRecord {
+        const void* fn;
+        uint64_t publish, caller_done, all_done;
+        uint64_t start[2], end[2];
+        uint32_t thread[2];
+    };
+    std::vector<TraceRecord> trace_;
+    bool solo_ = false;
+#endif
 };
 
 }  // namespace drape
