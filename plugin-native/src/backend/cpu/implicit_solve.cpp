@@ -389,8 +389,7 @@ double ImplicitSolve::over_blocks(ThreadPool* pool, Fn&& fn) {
         for (uint32_t b = first; b < last; ++b) block_sum_[b] = fn(b * kBlock, std::min(n, (b + 1) * kBlock));
     };
     if (ThreadPool* threads = parallel(pool)) {
-        const uint32_t count = threads->size();
-        threads->run_on_all([&](uint32_t t) { run(blocks * t / count, blocks * (t + 1) / count); });
+        threads->parallel_grains(blocks, kGrain, run);
     } else {
         run(0, blocks);
     }

@@ -121,6 +121,9 @@ class ImplicitSolve {
     /// near equal: with 256, a 65^2 cloth's 17 blocks went 8 / 9 and the worker's residual pass took
     /// 7 % more instructions than the caller's.
     static constexpr uint32_t kBlock = 64;
+    /// Blocks a thread takes at a time in over_blocks (ThreadPool::parallel_grains): 256 particles,
+    /// ~4 us of the residual pass.
+    static constexpr uint32_t kGrain = 4;
     /// pool when it would split the particles (ThreadPool::chunks, the particle passes' rule), else
     /// null: the calling thread alone.
     ThreadPool* parallel(ThreadPool* pool) const {

@@ -29,7 +29,7 @@ constexpr int kSpinRounds = 2000;
 constexpr int kYieldRounds = 200;
 }  // namespace
 
-ThreadPool::ThreadPool(uint32_t threads) : chunk_(threads) {
+ThreadPool::ThreadPool(uint32_t threads) : chunk_(threads), cursor_(threads) {
 #ifdef DRAPE_POOL_TRACE
     trace_.reserve(size_t(1) << 20);
     solo_ = std::getenv("DRAPE_POOL_SOLO") && std::atoi(std::getenv("DRAPE_POOL_SOLO")) == 1;

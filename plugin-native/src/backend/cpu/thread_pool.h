@@ -56,6 +56,27 @@ public:
         parallel_chunks(count, [&](uint32_t, uint32_t b, uint32_t e) { fn(b, e); });
     }
 
+    /// Runs fn(begin, end) over [0, count) in ranges of at most grain items: each thread takes the
+    /// ranges of its own share (parallel_chunks' split) in order, then those still left in the
+    /// others' shares, so that a thread slowed down mid-pass (a busy core) holds the pass up by one
+    /// range at most, not by the rest of its share. fn's result per item must not depend on the
+    /// ranges.
+    template <class Fn>
+    void parallel_grains(uint32_t count, uint32_t grain, Fn&& fn) {
+        const uint32_t n = size();
+        for (uint32_t t = 0; t < n; ++t) cursor_[t].next.store(share(count, t), std::memory_order_relaxed);
+        auto job = [&](uint32_t t) {
+            for (uint32_t k = 0; k < n; ++k) {
+                const uint32_t c = t + k < n ? t + k : t + k - n, end = share(count, c + 1);
+                while (cursor_[c].next.load(std::memory_order_relaxed) < end) {
+                    const uint32_t b = cursor_[c].next.fetch_add(grain, std::memory_order_relaxed);
+                    if (b < end) fn(b, end - b < grain ? end : b + grain);
+                }
+            }
+        };
+        run(&invoke<decltype(job)>, &job);
+    }
+
     /// Runs fn(k) once for each chunk k in [0, size()), each on whichever thread takes it (chunk k
     /// usually on thread k, 0 = caller); returns when all are done. fn must not depend on which
     /// thread runs it.
@@ -71,6 +92,8 @@ private:
         (*static_cast<F*>(f))(t);
     }
     void run(JobFn fn, void* ctx);
+    /// Start of thread t's share of count items.
+    uint32_t share(uint32_t count, uint32_t t) const { return uint32_t(uint64_t(count) * t / size()); }
     /// Claims and runs the chunks of job gen still free, chunk own first.
     void take_chunks(uint32_t gen, uint32_t own);
     void worker_main(uint32_t index);
@@ -81,6 +104,12 @@ private:
     std::atomic<uint32_t> generation_{0};  ///< of the last job published
     std::vector<std::atomic<uint32_t>> chunk_;  ///< per chunk: the generation of the last job that claimed it
     std::atomic<uint32_t> done_{0};        ///< chunks of the current job finished
+    /// parallel_grains: per share the next item not yet taken, each on its own cache line (its
+    /// thread takes from it alone until a thread that finished early comes for the rest).
+    struct alignas(64) Cursor {
+        std::atomic<uint32_t> next{0};
+    };
+    std::vector<Cursor> cursor_;
     std::atomic<uint32_t> sleepers_{0};
     std::atomic<bool> stop_{false};
     std::mutex mutex_;
