@@ -78,7 +78,7 @@ void CpuCloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& k
     Particle* iterate = spare2_.data();
     for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_predict(c, cur, disp, target, iterate, b, e); });
     for (uint32_t k : kinematic_) target[k] = iterate[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
-    // The finer factor where it fits this substep (friction_substeps), else the planned one.
+    // The finer factor where it fits this substep (friction_near), else the planned one.
     const bool fine = fine_ready_ && std::fabs(c.h / implicit_fine_.h() - 1.0f) < kImplicitRefactor;
     ImplicitSolve& implicit = fine ? implicit_fine_ : implicit_;
     if (!fine && !(std::fabs(implicit_.h() / last_h_ - 1.0f) < kImplicitRefactor)) factor_implicit(last_h_);  // dt changed a lot
@@ -142,11 +142,13 @@ void CpuCloth::begin(float dt) {
     last_dt_ = dt;
     if (params_.substeps == 0 && !ix_.colliders.empty())
         substeps_ = std::min(kMaxSubsteps, std::max(substeps_, collider_substeps(dt)));
-    if (fine_ready_) substeps_ = std::min(kMaxSubsteps, std::max(substeps_, friction_substeps(dt)));
+    const bool friction = fine_ready_ && friction_near(dt);
+    if (friction) substeps_ = std::min(kMaxSubsteps, std::max(substeps_, kFrictionSubstepsImplicit));
     if (params_.substeps == 0 && sc_.enabled)
         substeps_ = std::min(kMaxSubsteps, std::max(substeps_, self_collision_substeps(dt)));
     h_ = dt / float(substeps_);
     iterations_ = iterations_for();
+    if (friction && params_.iterations == 0) iterations_ = std::max(iterations_, kFrictionIterationsImplicit);
     implicit_iterations_ = 0;
     for_particles([&](uint32_t b, uint32_t e) {  // on the pool (on the caller alone: ~2 % of a 65^2 1x1 step)
         std::copy(x_.begin() + b, x_.begin() + e, backup_x_.begin() + b);

@@ -44,9 +44,10 @@ private:
     /// Substeps the automatic budget needs for the colliders that move near the cloth this step
     /// (kColliderTravelPerSubstep; 1 if none, cpu_collide.cpp).
     uint32_t collider_substeps(float dt) const;
-    /// IMPLICIT: kFrictionSubstepsImplicit when a collider with friction is near the cloth over the
-    /// step (its bounds against the cloth's, grown by the fastest particle's travel), else 1.
-    uint32_t friction_substeps(float dt) const;
+    /// Whether a collider with friction is near the cloth over the step (its bounds against the
+    /// cloth's, grown by the fastest particle's travel): IMPLICIT then takes kFrictionSubstepsImplicit
+    /// substeps of kFrictionIterationsImplicit iterations.
+    bool friction_near(float dt) const;
     /// Substeps the automatic budget needs with self-collision on: no particle moves more than
     /// kSelfMoveLimit thicknesses per substep relative to the cloth's mean motion, at its last
     /// substep's velocity (cpu_collide.cpp).
@@ -89,7 +90,7 @@ private:
     std::vector<glm::vec3> contact_normal_;
     bool contact_fresh_ = false;
     ImplicitSolve implicit_;
-    /// IMPLICIT's solve at kFrictionSubstepsImplicit substeps a step (friction_substeps), factored
+    /// IMPLICIT's solve at kFrictionSubstepsImplicit substeps a step (friction_near), factored
     /// outside the step (refresh_friction) while a collider has friction: in A built for the planned
     /// substep (dt/2) the mass term is too small by (planned / actual substep)^2, and with 8 substeps
     /// on it (16 times) 4 iterations let the cloth slide off a sphere with friction 1.

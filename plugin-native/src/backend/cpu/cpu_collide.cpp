@@ -84,13 +84,11 @@ bool touches(const Aabb& cloth, const CollideShape& s) {
 
 }  // namespace
 
-uint32_t CpuCloth::friction_substeps(float dt) const {
+bool CpuCloth::friction_near(float dt) const {
     const Aabb cloth = step_bounds(x_, d_, h_prev_, dt);
-    for (const ColliderState& c : ix_.colliders) {
-        if (!(c.friction > 0.0f)) continue;
-        if (touches(cloth, c.at_substep(0, 1))) return kFrictionSubstepsImplicit;
-    }
-    return 1;
+    for (const ColliderState& c : ix_.colliders)
+        if (c.friction > 0.0f && touches(cloth, c.at_substep(0, 1))) return true;
+    return false;
 }
 
 uint32_t CpuCloth::collider_substeps(float dt) const {
