@@ -9,10 +9,10 @@
 #   fuzz   libFuzzer over the C ABI for DRAPE_FUZZ_SECONDS (60 under CI, 20 otherwise)
 #   tsan   threading tests (label tsan) under ThreadSanitizer
 #   arm64  native suite cross-compiled for aarch64, run under qemu-user (slow physics references,
-#          the four longest physics runs (47-75 s each under qemu: resting contact, friction, a fine
-#          cloth's tethers, every change waking a cloth; their code runs in the shorter collision,
-#          tether and sleep tests), the self-collision threaded bit check and GLES excluded: see the
-#          arm64 test preset)
+#          the longest physics runs (47-390 s each under qemu: resting contact, friction and the
+#          IMPLICIT friction substeps, a fine cloth's tethers, every change waking a cloth; their code
+#          runs in the shorter collision, tether and sleep tests), the self-collision threaded bit
+#          check and GLES excluded: see the arm64 test preset)
 # Usage: bash .ci/hardening.sh [asan|fuzz|tsan|arm64]...   (no argument: all four)
 set -euo pipefail
 cd "$(dirname "$0")/.."
