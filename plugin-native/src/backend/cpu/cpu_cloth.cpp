@@ -78,7 +78,7 @@ void CpuCloth::implicit_substep(kernels::SubstepContext& c, const KinematicAt& k
     Particle* iterate = spare2_.data();
     for_particles([&](uint32_t b, uint32_t e) { kernels::implicit_predict(c, cur, disp, target, iterate, b, e); });
     for (uint32_t k : kinematic_) target[k] = iterate[k] = Particle(kinematic_at(k) - glm::vec3(cur[k]), 0.0f);
-    // The finer factor where it fits this substep (friction_near), else the planned one.
+    // The finer factor where it fits this substep (collider_substeps), else the planned one.
     const bool fine = fine_ready_ && std::fabs(c.h / implicit_fine_.h() - 1.0f) < kImplicitRefactor;
     ImplicitSolve& implicit = fine ? implicit_fine_ : implicit_;
     if (!fine && !(std::fabs(implicit_.h() / last_h_ - 1.0f) < kImplicitRefactor)) factor_implicit(last_h_);  // dt changed a lot
@@ -140,9 +140,10 @@ void CpuCloth::begin(float dt) {
     // frame or two (refactoring allocates and costs many steps).
     last_h_ = dt / float(substeps_);
     last_dt_ = dt;
+    bool friction_near = false;
     if (params_.substeps == 0 && !ix_.colliders.empty())
-        substeps_ = std::min(kMaxSubsteps, std::max(substeps_, collider_substeps(dt)));
-    const bool friction = fine_ready_ && friction_near(dt);
+        substeps_ = std::min(kMaxSubsteps, std::max(substeps_, collider_substeps(dt, friction_near)));
+    const bool friction = fine_ready_ && friction_near;
     if (friction) substeps_ = std::min(kMaxSubsteps, std::max(substeps_, kFrictionSubstepsImplicit));
     if (params_.substeps == 0 && sc_.enabled)
         substeps_ = std::min(kMaxSubsteps, std::max(substeps_, self_collision_substeps(dt)));

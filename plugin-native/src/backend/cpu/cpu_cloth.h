@@ -42,12 +42,11 @@ private:
     /// Touch drag (first substep) and colliders (cpu_collide.cpp).
     void collide(uint32_t sub);
     /// Substeps the automatic budget needs for the colliders that move near the cloth this step
-    /// (kColliderTravelPerSubstep; 1 if none, cpu_collide.cpp).
-    uint32_t collider_substeps(float dt) const;
-    /// Whether a collider with friction is near the cloth over the step (its bounds against the
-    /// cloth's, grown by the fastest particle's travel): IMPLICIT then takes kFrictionSubstepsImplicit
-    /// substeps of kFrictionIterationsImplicit iterations.
-    bool friction_near(float dt) const;
+    /// (kColliderTravelPerSubstep; 1 if none, cpu_collide.cpp). friction_near: whether a collider with
+    /// friction is near (its bounds over the step against the cloth's, grown by the fastest particle's
+    /// travel): IMPLICIT then takes kFrictionSubstepsImplicit substeps of kFrictionIterationsImplicit
+    /// iterations.
+    uint32_t collider_substeps(float dt, bool& friction_near) const;
     /// Substeps the automatic budget needs with self-collision on: no particle moves more than
     /// kSelfMoveLimit thicknesses per substep relative to the cloth's mean motion, at its last
     /// substep's velocity (cpu_collide.cpp).
@@ -90,7 +89,7 @@ private:
     std::vector<glm::vec3> contact_normal_;
     bool contact_fresh_ = false;
     ImplicitSolve implicit_;
-    /// IMPLICIT's solve at kFrictionSubstepsImplicit substeps a step (friction_near), factored
+    /// IMPLICIT's solve at kFrictionSubstepsImplicit substeps a step (collider_substeps), factored
     /// outside the step (refresh_friction) while a collider has friction: in A built for the planned
     /// substep (dt/2) the mass term is too small by (planned / actual substep)^2, and with 8 substeps
     /// on it (16 times) 4 iterations let the cloth slide off a sphere with friction 1.

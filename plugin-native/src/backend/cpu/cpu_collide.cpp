@@ -84,25 +84,18 @@ bool touches(const Aabb& cloth, const CollideShape& s) {
 
 }  // namespace
 
-bool CpuCloth::friction_near(float dt) const {
-    const Aabb cloth = step_bounds(x_, d_, h_prev_, dt);
-    for (const ColliderState& c : ix_.colliders)
-        if (c.friction > 0.0f && touches(cloth, c.at_substep(0, 1))) return true;
-    return false;
-}
-
-uint32_t CpuCloth::collider_substeps(float dt) const {
+uint32_t CpuCloth::collider_substeps(float dt, bool& friction_near) const {
     // Near: the collider's bounds over the step touch the cloth's over the step (step_bounds).
     const Aabb cloth = step_bounds(x_, d_, h_prev_, dt);
     uint32_t needed = 1;
+    friction_near = false;
     for (const ColliderState& c : ix_.colliders) {
         const float travel = glm::length(c.pos_end - c.pos_start);
-        if (c.shape == DRAPE_COLLIDER_PLANE || travel == 0) continue;  // a plane cannot be passed around
-        const CollideShape s = c.at_substep(0, 1);
-        Aabb swept;
-        add_shape_bounds(swept, s, s.pos0, s.rot0);
-        add_shape_bounds(swept, s, s.pos1, s.rot1);
-        if (!swept.overlaps(cloth)) continue;
+        const bool moving = c.shape != DRAPE_COLLIDER_PLANE && travel != 0;  // a plane cannot be passed around
+        if (!moving && !(c.friction > 0.0f)) continue;
+        if (!touches(cloth, c.at_substep(0, 1))) continue;
+        friction_near = friction_near || c.friction > 0.0f;
+        if (!moving) continue;
         const float smallest =
             (c.shape == DRAPE_COLLIDER_BOX ? std::min({c.size.x, c.size.y, c.size.z}) : c.size.x) + c.margin;
         const float s_needed = std::ceil(travel / (kColliderTravelPerSubstep * smallest));
