@@ -93,7 +93,7 @@ run_arm64() {
   # generated files, not of the library (and their python3 is run through qemu in this build).
   local slow='R10Undamped|R11Xpbd|R12Xpbd|ThreadedEqualsSingleThreaded|R4Equilibrium|R9Momentum|FarFromOrigin'
   slow+='|Tethers.BoundStretch|FollowMovingPins|ForcedInstabilityRollsBack|Collision.RestingContact'
-  slow+='|Collision.FastSphere|Collision.FrictionHolds|Collision.FrictionalSphere|Collision.ClothDraped'
+  slow+='|Collision.FastSphere|Collision.FrictionHolds|Collision.FrictionlessEdges|Collision.FrictionalSphere|Collision.ClothDraped'
   slow+='|Collision.NoOrFar|SelfCollision.Folding'
   slow+='|SelfCollision.Threaded|SelfCollision.OffByDefault|Sleep.EveryChange|Sleep.Asleep|Sleep.Unchanged'
   slow+='|Owner.Teleport|Owner.Inertia|Threading.WorldSteps|Soak|^Abi\.|RestState'

@@ -52,17 +52,20 @@ void CpuCloth::refresh_backend() {
     } else {
         implicit_.clear();
     }
-    refresh_friction();
+    refresh_contacts();
 }
 
-void CpuCloth::refresh_colliders() { refresh_friction(); }
+void CpuCloth::refresh_colliders() { refresh_contacts(); }
 
-void CpuCloth::refresh_friction() {
-    bool friction = false;
-    for (const ColliderState& c : ix_.colliders) friction = friction || c.friction > 0.0f;
-    fine_ready_ = friction && params_.model == DRAPE_MODEL_IMPLICIT && params_.substeps == 0;
+void CpuCloth::refresh_contacts() {
+    contact_substeps_ = 0;
+    for (const ColliderState& c : ix_.colliders)
+        contact_substeps_ = std::max(contact_substeps_, c.friction > 0.0f                ? kFrictionSubstepsImplicit
+                                                        : c.shape != DRAPE_COLLIDER_PLANE ? kContactSubstepsImplicit
+                                                                                          : 0u);
+    fine_ready_ = contact_substeps_ > 0 && params_.model == DRAPE_MODEL_IMPLICIT && params_.substeps == 0;
     if (!fine_ready_) return;
-    const float h = (last_dt_ > 0 ? last_dt_ : kDefaultH) / float(kFrictionSubstepsImplicit);
+    const float h = (last_dt_ > 0 ? last_dt_ : kDefaultH) / float(contact_substeps_);
     if (implicit_fine_.inputs_changed(params_, x_.data(), topo_.particle_count) || implicit_fine_.h() == 0 ||
         !(std::fabs(implicit_fine_.h() / h - 1.0f) < kImplicitRefactor))
         implicit_fine_.factor(topo_, params_, x_.data(), h);
@@ -140,16 +143,16 @@ void CpuCloth::begin(float dt) {
     // frame or two (refactoring allocates and costs many steps).
     last_h_ = dt / float(substeps_);
     last_dt_ = dt;
-    bool friction_near = false;
+    bool contact_near = false;
     if (params_.substeps == 0 && !ix_.colliders.empty())
-        substeps_ = std::min(kMaxSubsteps, std::max(substeps_, collider_substeps(dt, friction_near)));
-    const bool friction = fine_ready_ && friction_near;
-    if (friction) substeps_ = std::min(kMaxSubsteps, std::max(substeps_, kFrictionSubstepsImplicit));
+        substeps_ = std::min(kMaxSubsteps, std::max(substeps_, collider_substeps(dt, contact_near)));
+    const bool contact = fine_ready_ && contact_near;
+    if (contact) substeps_ = std::min(kMaxSubsteps, std::max(substeps_, contact_substeps_));
     if (params_.substeps == 0 && sc_.enabled)
         substeps_ = std::min(kMaxSubsteps, std::max(substeps_, self_collision_substeps(dt)));
     h_ = dt / float(substeps_);
     iterations_ = iterations_for();
-    if (friction && params_.iterations == 0) iterations_ = std::max(iterations_, kFrictionIterationsImplicit);
+    if (contact && params_.iterations == 0) iterations_ = std::max(iterations_, kContactIterationsImplicit);
     implicit_iterations_ = 0;
     for_particles([&](uint32_t b, uint32_t e) {  // on the pool (on the caller alone: ~2 % of a 65^2 1x1 step)
         std::copy(x_.begin() + b, x_.begin() + e, backup_x_.begin() + b);

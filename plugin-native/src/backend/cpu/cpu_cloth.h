@@ -42,11 +42,10 @@ private:
     /// Touch drag (first substep) and colliders (cpu_collide.cpp).
     void collide(uint32_t sub);
     /// Substeps the automatic budget needs for the colliders that move near the cloth this step
-    /// (kColliderTravelPerSubstep; 1 if none, cpu_collide.cpp). friction_near: whether a collider with
-    /// friction is near (its bounds over the step against the cloth's, grown by the fastest particle's
-    /// travel): IMPLICIT then takes kFrictionSubstepsImplicit substeps of kFrictionIterationsImplicit
-    /// iterations.
-    uint32_t collider_substeps(float dt, bool& friction_near) const;
+    /// (kColliderTravelPerSubstep; 1 if none, cpu_collide.cpp). contact_near: whether a collider with
+    /// friction, or one that is not a plane, is near (its bounds over the step against the cloth's,
+    /// grown by the fastest particle's travel): IMPLICIT then takes contact_substeps_ substeps.
+    uint32_t collider_substeps(float dt, bool& contact_near) const;
     /// Substeps the automatic budget needs with self-collision on: no particle moves more than
     /// kSelfMoveLimit thicknesses per substep relative to the cloth's mean motion, at its last
     /// substep's velocity (cpu_collide.cpp).
@@ -89,16 +88,19 @@ private:
     std::vector<glm::vec3> contact_normal_;
     bool contact_fresh_ = false;
     ImplicitSolve implicit_;
-    /// IMPLICIT's solve at kFrictionSubstepsImplicit substeps a step (collider_substeps), factored
-    /// outside the step (refresh_friction) while a collider has friction: in A built for the planned
+    /// IMPLICIT's solve at contact_substeps_ a step while a collider that needs them is near
+    /// (collider_substeps), factored outside the step (refresh_contacts): in A built for the planned
     /// substep (dt/2) the mass term is too small by (planned / actual substep)^2, and with 8 substeps
     /// on it (16 times) 4 iterations let the cloth slide off a sphere with friction 1.
     ImplicitSolve implicit_fine_;
-    bool fine_ready_ = false;  ///< implicit_fine_ is factored for these params and a collider has friction
+    /// kFrictionSubstepsImplicit if a collider has friction, else kContactSubstepsImplicit if one is not
+    /// a plane, else 0.
+    uint32_t contact_substeps_ = 0;
+    bool fine_ready_ = false;  ///< implicit_fine_ is factored for these params and contact_substeps_
     const ImplicitSolve* implicit_last_ = nullptr;  ///< the solve the last substep used
     float last_dt_ = 0;  ///< step of the last step, s (0: none yet)
     void refresh_colliders() override;
-    void refresh_friction();  ///< factors implicit_fine_ when a collider has friction and it is stale
+    void refresh_contacts();  ///< contact_substeps_ for the colliders, implicit_fine_ factored for them when stale
     template <class KinematicAt>
     void implicit_substep(kernels::SubstepContext& c, const KinematicAt& kinematic_at);
     void factor_implicit(float h);

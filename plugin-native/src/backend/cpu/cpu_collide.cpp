@@ -84,17 +84,18 @@ bool touches(const Aabb& cloth, const CollideShape& s) {
 
 }  // namespace
 
-uint32_t CpuCloth::collider_substeps(float dt, bool& friction_near) const {
+uint32_t CpuCloth::collider_substeps(float dt, bool& contact_near) const {
     // Near: the collider's bounds over the step touch the cloth's over the step (step_bounds).
     const Aabb cloth = step_bounds(x_, d_, h_prev_, dt);
     uint32_t needed = 1;
-    friction_near = false;
+    contact_near = false;
     for (const ColliderState& c : ix_.colliders) {
         const float travel = glm::length(c.pos_end - c.pos_start);
         const bool moving = c.shape != DRAPE_COLLIDER_PLANE && travel != 0;  // a plane cannot be passed around
-        if (!moving && !(c.friction > 0.0f)) continue;
+        const bool contact = c.friction > 0.0f || (fine_ready_ && c.shape != DRAPE_COLLIDER_PLANE);  // contact_substeps_
+        if (!moving && !contact) continue;
         if (!touches(cloth, c.at_substep(0, 1))) continue;
-        friction_near = friction_near || c.friction > 0.0f;
+        contact_near = contact_near || contact;
         if (!moving) continue;
         const float smallest =
             (c.shape == DRAPE_COLLIDER_BOX ? std::min({c.size.x, c.size.y, c.size.z}) : c.size.x) + c.margin;
