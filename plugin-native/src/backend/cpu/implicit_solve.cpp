@@ -36,13 +36,46 @@ size_t factor_entries(const SparseMatrix& a) {
     return Symbolic().entries(a);
 }
 
-/// for_each_spring_coefficient over the springs whose other end j is free (has a factor row).
+/// Per slot of the neighbour table, the particle between a bend spring's ends that A routes it through
+/// (see ImplicitSolve::factor), or -1: one that is the other end of a structural or shear spring of both.
+std::vector<int> bend_middles(const NeighbourTable& nb, const drape_params& params) {
+    std::vector<int> via(nb.group.size(), -1);
+    if (!(params.stiffness[DRAPE_GROUP_BEND] > 0)) return via;
+    const uint32_t n = uint32_t(nb.count.size());
+    auto short_spring = [&](uint32_t a, uint32_t b) {  // a structural or shear spring joins a and b
+        for (uint32_t s = 0; s < nb.count[a]; ++s) {
+            const size_t slot = size_t(a) * nb.slots + s;
+            if (nb.index[slot] == b && nb.group[slot] < DRAPE_GROUP_BEND) return true;
+        }
+        return false;
+    };
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t s = 0; s < nb.count[i]; ++s) {
+            const size_t slot = size_t(i) * nb.slots + s;
+            if (nb.group[slot] != DRAPE_GROUP_BEND) continue;
+            for (uint32_t t = 0; t < nb.count[i] && via[slot] < 0; ++t) {
+                const size_t to = size_t(i) * nb.slots + t;
+                if (nb.group[to] < DRAPE_GROUP_BEND && short_spring(nb.index[to], nb.index[slot])) via[slot] = int(nb.index[to]);
+            }
+        }
+    return via;
+}
+
+/// for_each_spring_coefficient over the springs whose other end j is free (has a factor row), but those
+/// routed through a middle (via).
 template <class Fn>
 double for_each_coupling(const NeighbourTable& nb, const drape_params& params, const std::vector<int>& row,
-                         uint32_t i, double kd_h, Fn&& fn) {
-    return for_each_spring_coefficient(nb, params.stiffness, kd_h, i, [&](uint32_t j, double k) {
-        if (row[j] >= 0) fn(j, k);
-    });
+                         const std::vector<int>& via, uint32_t i, double kd_h, Fn&& fn) {
+    double sum = 0;
+    for (uint32_t s = 0; s < nb.count[i]; ++s) {
+        const size_t slot = size_t(i) * nb.slots + s;
+        const uint8_t g = nb.group[slot];
+        if (g >= DRAPE_GROUP_COUNT || !(params.stiffness[g] > 0) || via[slot] >= 0) continue;
+        const double k = params.stiffness[g] + kd_h;
+        sum += k;
+        if (row[nb.index[slot]] >= 0) fn(nb.index[slot], k);
+    }
+    return sum;
 }
 
 using Lanes = ImplicitSolve::Lanes;
@@ -166,6 +199,7 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     const double kd_h = double(params.damping) / h;
     // Free particles; kinematic ones enter only through the residual. row: factor row, -1 if kinematic.
     std::vector<int> row(n, -1);
+    const std::vector<int> via = bend_middles(nb, params);
     std::vector<uint32_t> free;
     for (uint32_t i = 0; i < n; ++i)
         if (x[i].w != 0.0f) {
@@ -214,7 +248,7 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     std::vector<uint8_t> part(n, 0);
     for (size_t f = half; f < split.size(); ++f) part[split[f]] = 1;
     for (uint32_t i : free)
-        for_each_coupling(nb, params, row, i, kd_h, [&](uint32_t j, double) {
+        for_each_coupling(nb, params, row, via, i, kd_h, [&](uint32_t j, double) {
             if (part[i] == 1 && part[j] == 0) part[i] = kParts;
             if (part[i] == 0 && part[j] == 1) part[j] = kParts;
         });
@@ -243,7 +277,7 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
             std::vector<Eigen::Triplet<double>> pattern;
             for (uint32_t i : members) {
                 pattern.emplace_back(local[i], local[i], 1.0);
-                for_each_coupling(nb, params, row, i, kd_h, [&](uint32_t j, double) {
+                for_each_coupling(nb, params, row, via, i, kd_h, [&](uint32_t j, double) {
                     if (part[j] == p) pattern.emplace_back(local[i], local[j], 1.0);
                 });
             }
@@ -272,11 +306,24 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     // substitutions, in float.
     std::vector<Eigen::Triplet<double>> entries;
     entries.reserve(size_t(m) * (nb.slots + 1));
+    const double bend_k = 2.0 * (double(params.stiffness[DRAPE_GROUP_BEND]) + kd_h);
     for (uint32_t i : free) {
-        const double diag = 1.0 / (double(x[i].w) * h * h) +
-                            for_each_coupling(nb, params, row, i, kd_h, [&](uint32_t j, double k) {
-                                entries.emplace_back(row[i], row[j], -k);
-                            });
+        double diag = 1.0 / (double(x[i].w) * h * h) +
+                      for_each_coupling(nb, params, row, via, i, kd_h, [&](uint32_t j, double k) {
+                          entries.emplace_back(row[i], row[j], -k);
+                      });
+        // A bend spring i-j routed through its middle m: 2k on i-m here, 2k on m-j from j's row (or here,
+        // if j is kinematic and has none).
+        for (uint32_t s = 0; s < nb.count[i]; ++s) {
+            const size_t slot = size_t(i) * nb.slots + s;
+            const int mid = via[slot];
+            if (mid < 0) continue;
+            diag += bend_k;
+            if (row[mid] < 0) continue;
+            entries.emplace_back(row[i], row[mid], -bend_k);
+            entries.emplace_back(row[mid], row[i], -bend_k);
+            entries.emplace_back(row[mid], row[mid], row[nb.index[slot]] >= 0 ? bend_k : 2.0 * bend_k);
+        }
         entries.emplace_back(row[i], row[i], diag);
     }
     SparseMatrix a(m, m);
