@@ -25,9 +25,10 @@ struct NeighbourTable {
     std::vector<uint32_t> count;      ///< used slots per particle
 };
 
-/// Calls fn(j, k) for every spring of particle i whose group has positive stiffness, with
-/// k = stiffness[group] + kd_h, the spring's coefficient in the constant implicit matrix
-/// M/h^2 + sum (k + kd/h) that the CPU factors and GLES coarsens; returns the sum of the k.
+/// Calls fn(j, k, slot) for every spring of particle i whose group has positive stiffness (slot: its
+/// place in the table), with k = stiffness[group] + kd_h, the spring's coefficient in the constant
+/// implicit matrix M/h^2 + sum (k + kd/h) that GLES coarsens (the CPU factors it with its bend springs
+/// routed through their middles, implicit_solve.h); returns the sum of the k.
 template <class Fn>
 double for_each_spring_coefficient(const NeighbourTable& nb, const float* stiffness, double kd_h, uint32_t i,
                                    Fn&& fn) {
@@ -38,7 +39,7 @@ double for_each_spring_coefficient(const NeighbourTable& nb, const float* stiffn
         if (g >= DRAPE_GROUP_COUNT || !(stiffness[g] > 0)) continue;
         const double k = stiffness[g] + kd_h;
         sum += k;
-        fn(nb.index[slot], k);
+        fn(nb.index[slot], k, slot);
     }
     return sum;
 }

@@ -57,12 +57,13 @@ void CpuCloth::refresh_backend() {
 
 void CpuCloth::refresh_colliders() { refresh_contacts(); }
 
+uint32_t CpuCloth::contact_substeps_for(const ColliderState& c) {
+    return c.friction > 0.0f ? kFrictionSubstepsImplicit : c.shape != DRAPE_COLLIDER_PLANE ? kContactSubstepsImplicit : 0u;
+}
+
 void CpuCloth::refresh_contacts() {
     contact_substeps_ = 0;
-    for (const ColliderState& c : ix_.colliders)
-        contact_substeps_ = std::max(contact_substeps_, c.friction > 0.0f                ? kFrictionSubstepsImplicit
-                                                        : c.shape != DRAPE_COLLIDER_PLANE ? kContactSubstepsImplicit
-                                                                                          : 0u);
+    for (const ColliderState& c : ix_.colliders) contact_substeps_ = std::max(contact_substeps_, contact_substeps_for(c));
     fine_ready_ = contact_substeps_ > 0 && params_.model == DRAPE_MODEL_IMPLICIT && params_.substeps == 0;
     if (!fine_ready_) return;
     const float h = (last_dt_ > 0 ? last_dt_ : kDefaultH) / float(contact_substeps_);

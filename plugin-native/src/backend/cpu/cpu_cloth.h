@@ -93,9 +93,10 @@ private:
     /// substep (dt/2) the mass term is too small by (planned / actual substep)^2, and with 8 substeps
     /// on it (16 times) 4 iterations let the cloth slide off a sphere with friction 1.
     ImplicitSolve implicit_fine_;
-    /// kFrictionSubstepsImplicit if a collider has friction, else kContactSubstepsImplicit if one is not
-    /// a plane, else 0.
-    uint32_t contact_substeps_ = 0;
+    /// IMPLICIT's substeps near collider c: kFrictionSubstepsImplicit with friction, else
+    /// kContactSubstepsImplicit if it is not a plane, else 0 (none needed).
+    static uint32_t contact_substeps_for(const ColliderState& c);
+    uint32_t contact_substeps_ = 0;  ///< the most contact_substeps_for gives over the colliders
     bool fine_ready_ = false;  ///< implicit_fine_ is factored for these params and contact_substeps_
     const ImplicitSolve* implicit_last_ = nullptr;  ///< the solve the last substep used
     float last_dt_ = 0;  ///< step of the last step, s (0: none yet)

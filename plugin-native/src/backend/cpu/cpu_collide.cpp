@@ -92,7 +92,7 @@ uint32_t CpuCloth::collider_substeps(float dt, bool& contact_near) const {
     for (const ColliderState& c : ix_.colliders) {
         const float travel = glm::length(c.pos_end - c.pos_start);
         const bool moving = c.shape != DRAPE_COLLIDER_PLANE && travel != 0;  // a plane cannot be passed around
-        const bool contact = c.friction > 0.0f || (fine_ready_ && c.shape != DRAPE_COLLIDER_PLANE);  // contact_substeps_
+        const bool contact = fine_ready_ && contact_substeps_for(c) > 0;
         if (!moving && !contact) continue;
         if (!touches(cloth, c.at_substep(0, 1))) continue;
         contact_near = contact_near || contact;

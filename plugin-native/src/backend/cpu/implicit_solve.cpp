@@ -62,19 +62,16 @@ std::vector<int> bend_middles(const NeighbourTable& nb, const drape_params& para
 }
 
 /// for_each_spring_coefficient over the springs whose other end j is free (has a factor row), but those
-/// routed through a middle (via).
+/// routed through a middle (via); returns the sum of their k.
 template <class Fn>
 double for_each_coupling(const NeighbourTable& nb, const drape_params& params, const std::vector<int>& row,
                          const std::vector<int>& via, uint32_t i, double kd_h, Fn&& fn) {
     double sum = 0;
-    for (uint32_t s = 0; s < nb.count[i]; ++s) {
-        const size_t slot = size_t(i) * nb.slots + s;
-        const uint8_t g = nb.group[slot];
-        if (g >= DRAPE_GROUP_COUNT || !(params.stiffness[g] > 0) || via[slot] >= 0) continue;
-        const double k = params.stiffness[g] + kd_h;
+    for_each_spring_coefficient(nb, params.stiffness, kd_h, i, [&](uint32_t j, double k, size_t slot) {
+        if (via[slot] >= 0) return;
         sum += k;
-        if (row[nb.index[slot]] >= 0) fn(nb.index[slot], k);
-    }
+        if (row[j] >= 0) fn(j, k);
+    });
     return sum;
 }
 
@@ -306,7 +303,6 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
     // substitutions, in float.
     std::vector<Eigen::Triplet<double>> entries;
     entries.reserve(size_t(m) * (nb.slots + 1));
-    const double bend_k = 2.0 * (double(params.stiffness[DRAPE_GROUP_BEND]) + kd_h);
     for (uint32_t i : free) {
         double diag = 1.0 / (double(x[i].w) * h * h) +
                       for_each_coupling(nb, params, row, via, i, kd_h, [&](uint32_t j, double k) {
@@ -314,16 +310,15 @@ void ImplicitSolve::factor(const Topology& topo, const drape_params& params, con
                       });
         // A bend spring i-j routed through its middle m: 2k on i-m here, 2k on m-j from j's row (or here,
         // if j is kinematic and has none).
-        for (uint32_t s = 0; s < nb.count[i]; ++s) {
-            const size_t slot = size_t(i) * nb.slots + s;
+        for_each_spring_coefficient(nb, params.stiffness, kd_h, i, [&](uint32_t j, double k, size_t slot) {
             const int mid = via[slot];
-            if (mid < 0) continue;
-            diag += bend_k;
-            if (row[mid] < 0) continue;
-            entries.emplace_back(row[i], row[mid], -bend_k);
-            entries.emplace_back(row[mid], row[i], -bend_k);
-            entries.emplace_back(row[mid], row[mid], row[nb.index[slot]] >= 0 ? bend_k : 2.0 * bend_k);
-        }
+            if (mid < 0) return;
+            diag += 2.0 * k;
+            if (row[mid] < 0) return;
+            entries.emplace_back(row[i], row[mid], -2.0 * k);
+            entries.emplace_back(row[mid], row[i], -2.0 * k);
+            entries.emplace_back(row[mid], row[mid], row[j] >= 0 ? 2.0 * k : 4.0 * k);
+        });
         entries.emplace_back(row[i], row[i], diag);
     }
     SparseMatrix a(m, m);

@@ -25,7 +25,7 @@ Rows fine_matrix(const NeighbourTable& nb, const std::vector<float>& w, const fl
         if (!(w[i] > 0)) continue;
         a.free[i] = true;
         a.diag[i] = 1.0 / (double(w[i]) * h * h) +  // the springs along their length (jacobi_step's block)
-                    for_each_spring_coefficient(nb, stiffness, double(damping) / h, i, [&](uint32_t j, double k) {
+                    for_each_spring_coefficient(nb, stiffness, double(damping) / h, i, [&](uint32_t j, double k, size_t) {
                         if (w[j] > 0) a.off[i].push_back({j, -k});
                     });
     }
