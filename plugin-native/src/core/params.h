@@ -35,7 +35,7 @@ constexpr uint32_t kAutoSubstepsImplicit = 2;
 /// through a cloth; at 0.5 none got through at 2 to 20 radii per frame (test_collision.cpp).
 constexpr float kColliderTravelPerSubstep = 0.5f;
 /// IMPLICIT's automatic substeps while the cloth is near a collider with friction (a stopgap, on the
-/// CPU; GLES runs 16 substeps anyway). The collision pass's position-based friction moves a contact
+/// CPU; GLES: 32 substeps, below). The collision pass's position-based friction moves a contact
 /// back along the surface after the solve by what the solve moved it, up to mu times its push into
 /// the collider, stretching the springs the solve had balanced; the work grows like the substep to
 /// the fourth power per substep. At 2 substeps a cloth dropped on a sphere (21^2, 0.1 kg, friction 1)
@@ -87,6 +87,16 @@ constexpr float kImplicitTolerance = 5e-4f;
 /// 16 x 2, 4.6e-5 at 16 x 3; R13's bound is 5e-3).
 constexpr uint32_t kAutoIterationsImplicitGles = 2;
 constexpr float kMaxAutoSubstepImplicitGles = 1.0f / 960.0f;
+/// GLES IMPLICIT's longest automatic substep while a collider that is not a plane is set (GLES has
+/// no broad phase: the cloth's bounds live on the GPU). Its few block-Jacobi passes do not see the
+/// contacts the collision pass then makes; at 1/960 s a 33^2 cloth (0.2 kg) laid over a frictionless
+/// box gained up to 1.3 J above its lowest total energy (9 placements: box half sizes 0.2-0.35 m,
+/// cloth offsets 0-0.2 m) and one resting centred on the box never settled (strain 10-30 %); with
+/// friction 1 up to 0.57 J; a capsule 0.045 J, a sphere 0.15 J. At 1/1920 s (32 x 2 at 60 Hz):
+/// box 0.057 J (friction 1: 0.093 J), capsule 0.051 J, sphere 0.004 J; 24 x 2 still 0.27 J, 16 x 6
+/// 0.38 J, 24 x 3 0.14 J. Projecting every pass's iterate out of the colliders instead did worse (box
+/// up to 3 J, sphere 0.72 J, and frictionless cloths stuck on the box), as did no coarse level (6 J).
+constexpr float kMaxContactSubstepImplicitGles = 1.0f / 1920.0f;
 /// GLES IMPLICIT on cloth much stiffer along its grid lines than across them (structural over
 /// shear stiffness r above the default's 2): the soft modes are then in-plane shear and swing, which
 /// block Jacobi sees as stiff (a particle's block holds the structural springs) and the constant

@@ -1166,6 +1166,17 @@ void GlesCloth::run_tether(Program& p, int x, int d, int out_x, int out_d) {
     draw(vertex_array(x, d, kTetherInputs), out_x, out_d, x);  // x: the anchors' positions
 }
 
+uint32_t GlesCloth::gles_substeps_for(float dt) const {
+    const uint32_t planned = substeps_for(dt);
+    if (params_.model != DRAPE_MODEL_IMPLICIT || params_.substeps > 0) return planned;
+    bool edges_or_curves = false;
+    for (const ColliderState& c : ix_.colliders) edges_or_curves = edges_or_curves || c.shape != DRAPE_COLLIDER_PLANE;
+    if (!edges_or_curves) return planned;
+    // 1e-3: as substeps_for (1/60 s over 1/1920 s is 32)
+    const float contact = std::min(float(kMaxSubsteps), std::ceil(dt / kMaxContactSubstepImplicitGles - 1e-3f));
+    return std::max(planned, uint32_t(std::max(1.0f, contact)));
+}
+
 uint32_t GlesCloth::build_shapes(uint32_t sub, uint32_t substeps) {
     // Every collider is tested: the CPU's broad phase needs the cloth's bounds, which live on the
     // GPU (the narrow phase skips a particle that cannot have touched a collider after one distance
@@ -1319,7 +1330,7 @@ Result GlesCloth::gpu_step(float dt) {
     }
     if (sc_.enabled)
         if (Result r = GlesSelfCollide::prepare(*this); !r.ok()) return r;
-    const uint32_t substeps = substeps_for(dt);
+    const uint32_t substeps = gles_substeps_for(dt);
     const float h = dt / float(substeps);
     const uint32_t n = topo_.particle_count;
     Program* p_coarse[6] = {};  // restrict, down, solve, up; the iteration that prolongs, and its commit form

@@ -301,6 +301,9 @@ private:
     /// CpuCloth::collide: drag share (first substep, `drag`: drag_views_, drag_touches_) and colliders (shape_data_,
     /// `shapes` of them) on x and d, written to out_x and out_d.
     void run_interact(Program& p, int x, int d, int out_x, int out_d, bool drag, uint32_t shapes);
+    /// Substeps of a step of dt: Cloth::substeps_for, but IMPLICIT's automatic substeps are at most
+    /// kMaxContactSubstepImplicitGles long while a collider that is not a plane is set.
+    uint32_t gles_substeps_for(float dt) const;
     /// Colliders of substep `sub` as CpuCloth::collide builds them (no broad phase: the
     /// CPU does not see the GPU positions) into shape_data_ (5 vec4 each); returns their count.
     uint32_t build_shapes(uint32_t sub, uint32_t substeps);
