@@ -1,6 +1,8 @@
 // Colliders: resting contact without penetration on every shape, fast colliders do not
-// tunnel, friction holds a cloth on a box corner, no/far colliders change nothing, bad input.
-// Penetration is measured here with the test's own distance functions (not the library's).
+// tunnel, friction holds a cloth on a box corner, contacts give the cloth no energy, no/far
+// colliders change nothing, bad input; the friction and energy tests also on GLES (CollisionGles,
+// with a headless context when built with GLES). Penetration is measured here with the test's own
+// distance functions (not the library's).
 #include <algorithm>
 #include <cmath>
 #include <cstring>
