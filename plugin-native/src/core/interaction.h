@@ -5,9 +5,11 @@
 // applies drag and colliders after each substep's solve.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -28,6 +30,58 @@ struct CollideShape {
     glm::vec3 size; uint32_t shape;   ///< drape_collider_shape and its sizes (see drape_collider)
 };
 static_assert(sizeof(CollideShape) == DRAPE_COLLIDER_VEC4 * sizeof(glm::vec4), "collider record of shaders/layout.h");
+
+/// Axis-aligned bounds (empty until something is added).
+struct Aabb {
+    glm::vec3 lo{INFINITY}, hi{-INFINITY};
+    void add(const glm::vec3& p) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    void add(const glm::vec3& p, float r) {
+        lo = glm::min(lo, p - r);
+        hi = glm::max(hi, p + r);
+    }
+    bool overlaps(const Aabb& o) const {
+        return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y && o.lo.y <= hi.y && lo.z <= o.hi.z && o.lo.z <= hi.z;
+    }
+};
+
+/// World bounds of a (non-plane) shape at one transform, grown by its margin.
+inline void add_shape_bounds(Aabb& b, const CollideShape& s, const glm::vec3& pos, const glm::quat& rot) {
+    if (s.shape == DRAPE_COLLIDER_SPHERE) {
+        b.add(pos, s.size.x + s.margin);
+    } else if (s.shape == DRAPE_COLLIDER_CAPSULE) {
+        const glm::vec3 axis = rot * glm::vec3(0, s.size.y, 0);
+        b.add(pos + axis, s.size.x + s.margin);
+        b.add(pos - axis, s.size.x + s.margin);
+    } else {  // box: |R| * half extents
+        const glm::mat3 r = glm::mat3_cast(rot);
+        const glm::vec3 e(std::fabs(r[0].x) * s.size.x + std::fabs(r[1].x) * s.size.y + std::fabs(r[2].x) * s.size.z,
+                          std::fabs(r[0].y) * s.size.x + std::fabs(r[1].y) * s.size.y + std::fabs(r[2].y) * s.size.z,
+                          std::fabs(r[0].z) * s.size.x + std::fabs(r[1].z) * s.size.y + std::fabs(r[2].z) * s.size.z);
+        b.lo = glm::min(b.lo, pos - e - s.margin);
+        b.hi = glm::max(b.hi, pos + e + s.margin);
+    }
+}
+
+/// Lowest signed height of the box's corners above a plane (normal n through point p).
+inline float lowest_above_plane(const Aabb& b, const glm::vec3& p, const glm::vec3& n) {
+    const glm::vec3 corner(n.x >= 0 ? b.lo.x : b.hi.x, n.y >= 0 ? b.lo.y : b.hi.y, n.z >= 0 ? b.lo.z : b.hi.z);
+    return glm::dot(corner - p, n);
+}
+
+/// Whether the shape over the substep (its start and end transforms, grown by its margin) may
+/// touch a cloth within these bounds.
+inline bool touches(const Aabb& cloth, const CollideShape& s) {
+    if (s.shape == DRAPE_COLLIDER_PLANE)
+        return lowest_above_plane(cloth, s.pos0, s.rot0 * glm::vec3(0, 1, 0)) < s.margin ||
+               lowest_above_plane(cloth, s.pos1, s.rot1 * glm::vec3(0, 1, 0)) < s.margin;
+    Aabb b;
+    add_shape_bounds(b, s, s.pos0, s.rot0);
+    add_shape_bounds(b, s, s.pos1, s.rot1);
+    return b.overlaps(cloth);
+}
 
 /// A collider as the host gave it, plus where it was at the start of the current step.
 struct ColliderState {

@@ -87,8 +87,8 @@ constexpr float kImplicitTolerance = 5e-4f;
 /// 16 x 2, 4.6e-5 at 16 x 3; R13's bound is 5e-3).
 constexpr uint32_t kAutoIterationsImplicitGles = 2;
 constexpr float kMaxAutoSubstepImplicitGles = 1.0f / 960.0f;
-/// GLES IMPLICIT's longest automatic substep while a collider that is not a plane is set (GLES has
-/// no broad phase: the cloth's bounds live on the GPU). Its few block-Jacobi passes do not see the
+/// GLES IMPLICIT's longest automatic substep while a collider that is not a plane may reach the cloth
+/// (GlesCloth::tethered_reach: the positions live on the GPU). Its few block-Jacobi passes do not see the
 /// contacts the collision pass then makes; at 1/960 s a 33^2 cloth (0.2 kg) laid over a frictionless
 /// box gained up to 1.3 J above its lowest total energy (9 placements: box half sizes 0.2-0.35 m,
 /// cloth offsets 0-0.2 m) and one resting centred on the box never settled (strain 10-30 %); with
@@ -99,6 +99,9 @@ constexpr float kMaxAutoSubstepImplicitGles = 1.0f / 960.0f;
 /// iterate out of the colliders instead did worse (box up to 3 J, sphere 0.72 J, and frictionless
 /// cloths stuck on the box), as did no coarse level (6 J).
 constexpr float kMaxContactSubstepImplicitGles = 1.0f / 1920.0f;
+/// Slack (m) added to the tethers' reach when GLES decides whether a collider may touch the cloth
+/// (GlesCloth::tethered_reach): rounding, and a tether pass that leaves a particle a hair beyond its length.
+constexpr float kTetherReachPad = 0.01f;
 /// GLES IMPLICIT on cloth much stiffer along its grid lines than across them (structural over
 /// shear stiffness r above the default's 2): the soft modes are then in-plane shear and swing, which
 /// block Jacobi sees as stiff (a particle's block holds the structural springs) and the constant

@@ -15,45 +15,6 @@
 namespace drape::cpu {
 namespace {
 
-struct Aabb {
-    glm::vec3 lo{INFINITY}, hi{-INFINITY};
-    void add(const glm::vec3& p) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-    }
-    void add(const glm::vec3& p, float r) {
-        lo = glm::min(lo, p - r);
-        hi = glm::max(hi, p + r);
-    }
-    bool overlaps(const Aabb& o) const {
-        return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y && o.lo.y <= hi.y && lo.z <= o.hi.z && o.lo.z <= hi.z;
-    }
-};
-
-/// World bounds of a (non-plane) shape at one transform, grown by its margin.
-void add_shape_bounds(Aabb& b, const CollideShape& s, const glm::vec3& pos, const glm::quat& rot) {
-    if (s.shape == DRAPE_COLLIDER_SPHERE) {
-        b.add(pos, s.size.x + s.margin);
-    } else if (s.shape == DRAPE_COLLIDER_CAPSULE) {
-        const glm::vec3 axis = rot * glm::vec3(0, s.size.y, 0);
-        b.add(pos + axis, s.size.x + s.margin);
-        b.add(pos - axis, s.size.x + s.margin);
-    } else {  // box: |R| * half extents
-        const glm::mat3 r = glm::mat3_cast(rot);
-        const glm::vec3 e(std::fabs(r[0].x) * s.size.x + std::fabs(r[1].x) * s.size.y + std::fabs(r[2].x) * s.size.z,
-                          std::fabs(r[0].y) * s.size.x + std::fabs(r[1].y) * s.size.y + std::fabs(r[2].y) * s.size.z,
-                          std::fabs(r[0].z) * s.size.x + std::fabs(r[1].z) * s.size.y + std::fabs(r[2].z) * s.size.z);
-        b.lo = glm::min(b.lo, pos - e - s.margin);
-        b.hi = glm::max(b.hi, pos + e + s.margin);
-    }
-}
-
-/// Lowest signed height of the box's corners above a plane (normal n through point p).
-float lowest_above_plane(const Aabb& b, const glm::vec3& p, const glm::vec3& n) {
-    const glm::vec3 corner(n.x >= 0 ? b.lo.x : b.hi.x, n.y >= 0 ? b.lo.y : b.hi.y, n.z >= 0 ? b.lo.z : b.hi.z);
-    return glm::dot(corner - p, n);
-}
-
 /// The cloth's bounds over a step of dt: its positions, grown by its fastest particle's travel over
 /// the step (its last substep's displacement d scaled to dt).
 Aabb step_bounds(const std::vector<kernels::Particle>& x, const std::vector<kernels::Particle>& d, float h_prev,
@@ -68,18 +29,6 @@ Aabb step_bounds(const std::vector<kernels::Particle>& x, const std::vector<kern
     cloth.lo -= reach;
     cloth.hi += reach;
     return cloth;
-}
-
-/// Whether the shape over the substep (its start and end transforms, grown by its margin) may
-/// touch a cloth within these bounds.
-bool touches(const Aabb& cloth, const CollideShape& s) {
-    if (s.shape == DRAPE_COLLIDER_PLANE)
-        return lowest_above_plane(cloth, s.pos0, s.rot0 * glm::vec3(0, 1, 0)) < s.margin ||
-               lowest_above_plane(cloth, s.pos1, s.rot1 * glm::vec3(0, 1, 0)) < s.margin;
-    Aabb b;
-    add_shape_bounds(b, s, s.pos0, s.rot0);
-    add_shape_bounds(b, s, s.pos1, s.rot1);
-    return b.overlaps(cloth);
 }
 
 }  // namespace

@@ -1068,6 +1068,7 @@ void GlesCloth::move_gpu_state(Program& p, const RigidMove& m) {
 
 void GlesCloth::move_state(const RigidMove& m) {
     Cloth::move_state(m);  // the CPU copy (the state while it is to be pushed; else kept consistent)
+    for (glm::vec3& a : anchors_from_) a = m.apply(a);
     if (!state_dirty_) gpu_moves_.push_back(m);
 }
 
@@ -1166,12 +1167,42 @@ void GlesCloth::run_tether(Program& p, int x, int d, int out_x, int out_d) {
     draw(vertex_array(x, d, kTetherInputs), out_x, out_d, x);  // x: the anchors' positions
 }
 
+bool GlesCloth::tethered_reach(Aabb& reach) const {
+    // Each substep's tether pass leaves every particle within its tether length of its anchor, and
+    // the anchors go from where they start (record_anchors, moved with the state) to their targets.
+    // Unknown (false) without tethers, with a particle no pin reaches, when other particles became
+    // kinematic since (their start is on the GPU), or while a grab or a drag moves particles.
+    if (!has_tethers() || grabs_on_gpu_ || !drag_views_.empty() || anchors_of_ != kinematic_) return false;
+    if (reach_stale_) {  // per anchor its farthest tether, once per change of tethers (refresh_backend)
+        const uint32_t n = topo_.particle_count;
+        anchor_reach_.assign(n, 0.0f);
+        all_tethered_ = true;
+        for (uint32_t i = 0; i < n; ++i) {
+            all_tethered_ = all_tethered_ && tether_length_[i] >= 0.0f;
+            float& r = anchor_reach_[tether_anchor_[i]];
+            r = std::max(r, tether_length_[i]);
+        }
+        reach_stale_ = false;
+    }
+    if (!all_tethered_) return false;
+    const float pad = kTetherReachPad + (sc_.enabled ? sc_.thickness : 0.0f);
+    for (size_t k = 0; k < kinematic_.size(); ++k) {
+        const float r = anchor_reach_[kinematic_[k]] + pad;
+        reach.add(anchors_from_[k], r);
+        reach.add(kinematic_target_[kinematic_[k]], r);
+    }
+    return true;
+}
+
 uint32_t GlesCloth::gles_substeps_for(float dt) const {
     const uint32_t planned = substeps_for(dt);
     if (params_.model != DRAPE_MODEL_IMPLICIT || params_.substeps > 0) return planned;
-    bool edges_or_curves = false;
-    for (const ColliderState& c : ix_.colliders) edges_or_curves = edges_or_curves || c.shape != DRAPE_COLLIDER_PLANE;
-    if (!edges_or_curves) return planned;
+    Aabb reach;
+    const bool known = tethered_reach(reach);
+    bool near = false;
+    for (const ColliderState& c : ix_.colliders)
+        near = near || (c.shape != DRAPE_COLLIDER_PLANE && (!known || touches(reach, c.at_substep(0, 1))));
+    if (!near) return planned;
     // 1e-3: as substeps_for (1/60 s over 1/1920 s is 32)
     const float contact = std::min(float(kMaxSubsteps), std::ceil(dt / kMaxContactSubstepImplicitGles - 1e-3f));
     return std::max(planned, uint32_t(std::max(1.0f, contact)));
@@ -1262,6 +1293,7 @@ Result GlesCloth::gpu_step(float dt) {
     if (!context_current(&why)) return {DRAPE_ERROR_BACKEND_UNAVAILABLE, "GLES step: " + why};
     drain_gl_errors();
     StateGuard guard;
+    if (state_dirty_) record_anchors([&](uint32_t k) { return glm::vec3(x_[k]); });  // the state comes from the CPU copy
     if (Result r = sync_gpu(); !r.ok()) return r;
     if (Result r = run_gpu_moves(); !r.ok()) return r;
     if (out_buffer_) {
@@ -1456,6 +1488,7 @@ Result GlesCloth::gpu_step(float dt) {
         shift_origin(shift);
         targets_dirty_ = true;
     }
+    record_anchors([&](uint32_t k) { return kinematic_target_[k]; });  // where the next step starts them (re-centred)
     Result r = write_output();
     stats_.substeps = substeps;
     stats_.iterations = model == DRAPE_MODEL_MASS_SPRING ? 1 : iterations_for();

@@ -302,8 +302,12 @@ private:
     /// `shapes` of them) on x and d, written to out_x and out_d.
     void run_interact(Program& p, int x, int d, int out_x, int out_d, bool drag, uint32_t shapes);
     /// Substeps of a step of dt: Cloth::substeps_for, but IMPLICIT's automatic substeps are at most
-    /// kMaxContactSubstepImplicitGles long while a collider that is not a plane is set.
+    /// kMaxContactSubstepImplicitGles long while a collider that is not a plane may reach the cloth:
+    /// its bounds over the step touch tethered_reach, or that is unknown.
     uint32_t gles_substeps_for(float dt) const;
+    /// Adds to `reach` bounds that hold the whole cloth throughout this step, from the tethers and
+    /// the pins' paths (the CPU sees no GPU position); false when it cannot tell.
+    bool tethered_reach(Aabb& reach) const;
     /// Colliders of substep `sub` as CpuCloth::collide builds them (no broad phase: the
     /// CPU does not see the GPU positions) into shape_data_ (5 vec4 each); returns their count.
     uint32_t build_shapes(uint32_t sub, uint32_t substeps);
@@ -367,6 +371,20 @@ private:
     bool uniforms_uploaded_ = false;  // uniforms_ is in gl_.uniforms
     uint32_t shape_capacity_ = 0;  // DRAPE_SHAPES of the interaction program being asked for
     bool drag_variant_ = false;    // DRAPE_DRAG of the interaction program being asked for
+    // Where the kinematic particles start the next step (tethered_reach): which, and where.
+    std::vector<uint32_t> anchors_of_;
+    std::vector<glm::vec3> anchors_from_;
+    template <class At>
+    void record_anchors(const At& at) {
+        anchors_of_ = kinematic_;
+        anchors_from_.resize(kinematic_.size());
+        for (size_t k = 0; k < kinematic_.size(); ++k) anchors_from_[k] = at(kinematic_[k]);
+    }
+    // Per anchor its farthest tether, and whether every particle has one (tethered_reach), from the
+    // tethers as refresh_backend last saw them.
+    mutable std::vector<float> anchor_reach_;
+    mutable bool all_tethered_ = false, reach_stale_ = true;
+    void refresh_backend() override { reach_stale_ = true; }
     std::vector<float> shape_data_;
     struct StillQuery {
         float dt = 0;        // of the step it checked
