@@ -483,7 +483,8 @@ TEST_F(CollisionGles, FrictionalSphereGivesTheClothNoEnergy) {
 // 17^2, tethers on as by default: no particle gets farther than 1.1 times its rest distance from the
 // pins) keeps 16 substeps beside a sphere 3 m away, with the same bits as without it, and takes 32 from
 // the step on which a sphere coming at it at 3 m/s could reach it, before the sphere gets within 5 cm of
-// any vertex. A free cloth, which nothing bounds, takes 32 with any sphere.
+// any vertex; carried by an owner that walks away from the far sphere and teleports 1.5 m, it keeps 16.
+// A free cloth, which nothing bounds, takes 32 with any sphere.
 TEST_F(CollisionGles, ContactSubstepsOnlyWhereAColliderCanReachTheCloth) {
     auto curtain = [](drape_world* w) {
         drape_grid_desc g = grid_desc(17, 17, 1.0f, 1.0f);
@@ -500,14 +501,21 @@ TEST_F(CollisionGles, ContactSubstepsOnlyWhereAColliderCanReachTheCloth) {
     drape_cloth* plain = curtain(w.get());
     drape_cloth* far = curtain(w.get());
     drape_cloth* coming = curtain(w.get());
+    drape_cloth* carried = curtain(w.get());
     const drape_collider far_sphere = collider(DRAPE_COLLIDER_SPHERE, 0.5f, 0.5f, 3.0f, 0.2f);
     ASSERT_DRAPE_OK(drape_cloth_set_colliders(far, &far_sphere, 1));
+    ASSERT_DRAPE_OK(drape_cloth_set_colliders(carried, &far_sphere, 1));
+    drape_owner owner{};
+    ASSERT_DRAPE_OK(drape_owner_default(&owner));
     int first_32 = -1, first_close = -1;
     for (int f = 0; f < 60; ++f) {
         drape_collider s = collider(DRAPE_COLLIDER_SPHERE, 0.5f, 0.5f, 3.0f - 3.0f * float(f) / 60.0f, 0.2f);
         ASSERT_DRAPE_OK(drape_cloth_set_colliders(coming, &s, 1));
-        for (drape_cloth* c : {plain, far, coming}) ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
+        owner.position[0] = -float(f) / 60.0f - (f >= 30 ? 1.5f : 0.0f);  // walks along -x, jumps at step 30
+        ASSERT_DRAPE_OK(drape_cloth_set_owner(carried, &owner));
+        for (drape_cloth* c : {plain, far, coming, carried}) ASSERT_DRAPE_OK(drape_cloth_step(c, 1.0f / 60));
         if (f > 0) EXPECT_EQ(stats_of(far).substeps, 16u) << "step " << f;
+        if (f > 0) EXPECT_EQ(stats_of(carried).substeps, 16u) << "step " << f;
         if (f == 0) EXPECT_EQ(stats_of(coming).substeps, 16u);
         if (first_32 < 0 && stats_of(coming).substeps == 32) first_32 = f;
         const std::vector<float> x = positions(coming);
