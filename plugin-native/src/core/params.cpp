@@ -36,6 +36,12 @@ float mass_spring_max_substep(float inverse_mass, float stiffness_sum, float dam
     return a > 0 ? (-b + std::sqrt(b * b + 4.0f * s * s * a)) / a : 2.0f * s * s / std::max(b, 1e-30f);
 }
 
+namespace {
+uint32_t clamp_substeps(float s) { return s < 1 ? 1u : s > float(kMaxSubsteps) ? kMaxSubsteps : uint32_t(s); }
+}  // namespace
+
+uint32_t gles_implicit_substeps(float dt, float h_max) { return clamp_substeps(std::ceil(dt / h_max - 1e-3f)); }
+
 uint32_t substeps_for(const drape_params& p, drape_backend backend, float h_max,
                       const uint32_t spring_count[DRAPE_GROUP_COUNT], float dt) {
     if (p.substeps > 0) return p.substeps;
@@ -48,9 +54,8 @@ uint32_t substeps_for(const drape_params& p, drape_backend backend, float h_max,
         const float ratio = shear > 0 ? p.stiffness[DRAPE_GROUP_STRUCTURAL] / shear : INFINITY;
         factor = std::min(kMaxStiffSubstepFactorGles, std::max(1.0f, std::sqrt(std::sqrt(0.5f * ratio))));
     }
-    // 1e-3: 1/60 s over 1/960 s is 16, not 17 by rounding.
-    const float s = gles_implicit ? std::ceil(dt * factor / kMaxAutoSubstepImplicitGles - 1e-3f) : std::ceil(dt / h_max);
-    return s < 1 ? 1u : s > float(kMaxSubsteps) ? kMaxSubsteps : uint32_t(s);
+    if (gles_implicit) return gles_implicit_substeps(dt * factor, kMaxAutoSubstepImplicitGles);
+    return clamp_substeps(std::ceil(dt / h_max));
 }
 
 StabilityEstimate estimate_stability(const Topology& topo, const drape_params& p, drape_backend backend, float dt) {

@@ -142,6 +142,9 @@ inline float verlet_accel_h(float h, float h_prev, bool first) { return first ? 
 /// nothing bounds it: no active spring or no inverse mass).
 float mass_spring_max_substep(float inverse_mass, float stiffness_sum, float damping, uint32_t active_springs);
 
+/// GLES IMPLICIT's substeps of at most h_max each in a step of dt, in [1, kMaxSubsteps] (ceil, less
+/// 1e-3: 1/60 s over 1/960 s is 16, not 17 by rounding).
+uint32_t gles_implicit_substeps(float dt, float h_max);
 /// Substeps a step of dt uses on `backend`: params.substeps if set; else MASS_SPRING: ceil(dt / h_max)
 /// (h_max from mass_spring_max_substep, the tightest particle), PBD/XPBD:
 /// kAutoSubstepsPositionBased, IMPLICIT: kAutoSubstepsImplicit on the CPU, substeps of at most

@@ -1197,15 +1197,12 @@ bool GlesCloth::tethered_reach(Aabb& reach) const {
 uint32_t GlesCloth::gles_substeps_for(float dt) const {
     const uint32_t planned = substeps_for(dt);
     if (params_.model != DRAPE_MODEL_IMPLICIT || params_.substeps > 0) return planned;
+    auto edge_or_curve = [](const ColliderState& c) { return c.shape != DRAPE_COLLIDER_PLANE; };
+    if (std::none_of(ix_.colliders.begin(), ix_.colliders.end(), edge_or_curve)) return planned;
     Aabb reach;
-    const bool known = tethered_reach(reach);
-    bool near = false;
-    for (const ColliderState& c : ix_.colliders)
-        near = near || (c.shape != DRAPE_COLLIDER_PLANE && (!known || touches(reach, c.at_substep(0, 1))));
-    if (!near) return planned;
-    // 1e-3: as substeps_for (1/60 s over 1/1920 s is 32)
-    const float contact = std::min(float(kMaxSubsteps), std::ceil(dt / kMaxContactSubstepImplicitGles - 1e-3f));
-    return std::max(planned, uint32_t(std::max(1.0f, contact)));
+    bool near = !tethered_reach(reach);
+    for (const ColliderState& c : ix_.colliders) near = near || (edge_or_curve(c) && touches(reach, c.at_substep(0, 1)));
+    return near ? std::max(planned, gles_implicit_substeps(dt, kMaxContactSubstepImplicitGles)) : planned;
 }
 
 uint32_t GlesCloth::build_shapes(uint32_t sub, uint32_t substeps) {
