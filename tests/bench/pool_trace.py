@@ -5,7 +5,12 @@ outside any pass, the worker idle), each thread's chunk time, the caller's wait 
 pass's end, the pool's own cost on the caller per pass (claims, publish, done counts); then per pass
 site (one ThreadPool::invoke instance) the chunks' time and the wait, and the serial gaps by the pair
 of sites around them.
-    python3 tests/bench/pool_trace.py PREFIX [LIBDRAPE]   (PREFIX: $DRAPE_POOL_TRACE of the run)
+    python3 tests/bench/pool_trace.py PREFIX [LIBDRAPE] [--steps A:B] [--solo SOLO_PREFIX]
+PREFIX: $DRAPE_POOL_TRACE of the run; --steps: only the measured steps A..B-1 (Python slice); --solo: a
+DRAPE_POOL_SOLO=1 run of the same scene and steps: each site's chunk time, both threads summed, over the
+same site's on one core ("inflation"). Near 1 everywhere: the two threads ran at one core's speed, and what
+the wall clock lost is in the serial, wait and pool columns. Above 1 at every site alike (the small
+coarse passes as much as the large streaming ones): the machine ran both cores slower during that run.
 """
 import collections
 import glob
@@ -27,10 +32,37 @@ def load(prefix):
     return per_us, np.frombuffer(raw[8:], STEP), np.fromfile(pools[0], REC) if pools else None
 
 
-def main():
-    prefix = sys.argv[1]
-    lib = sys.argv[2] if len(sys.argv) > 2 else None
+def load_steps(prefix, first, last):
     per_us, steps, recs = load(prefix)
+    return per_us, steps[first:last], recs
+
+
+def site_chunks(per_us, steps, recs):
+    """Chunk time (us, both threads) per pass site over the given steps, and their wall time."""
+    site = collections.defaultdict(float)
+    for s in steps:
+        r = recs[np.searchsorted(recs['publish'], s['start']):np.searchsorted(recs['publish'], s['end'])]
+        d = (r['end'] - r['start']).astype(float).sum(axis=1) / per_us
+        for fn, t in zip(r['fn'], d):
+            site[int(fn)] += t
+    return site, float((steps['end'] - steps['start']).sum()) / per_us
+
+
+def main():
+    args = sys.argv[1:]
+    first, last, solo = None, None, None
+    if '--steps' in args:
+        k = args.index('--steps')
+        a, b = args[k + 1].split(':')
+        first, last = (int(a) if a else None), (int(b) if b else None)
+        del args[k:k + 2]
+    if '--solo' in args:
+        k = args.index('--solo')
+        solo = args[k + 1]
+        del args[k:k + 2]
+    prefix = args[0]
+    lib = args[1] if len(args) > 1 else None
+    per_us, steps, recs = load_steps(prefix, first, last)
     us = lambda t: t.astype(float) / per_us
     wall = us(steps['end'] - steps['start'])
     print(f'{prefix}: {len(steps)} steps, iterations a step (median) {np.median(steps["it"]):.0f}, '
@@ -87,6 +119,14 @@ def main():
     print('  serial gaps per step (us), by the sites before and after')
     for (a, b), v in sorted(gap.items(), key=lambda x: -x[1])[:8]:
         print(f'    {v / n:8.2f}  {name(a)} -> {name(b)}')
+    if solo:
+        two, wall_two = site_chunks(per_us, steps, recs)
+        one, wall_one = site_chunks(*load_steps(solo, first, last))
+        print(f'  against {solo} (one core, same steps): wall {wall_one / wall_two:.2f}x faster on two threads; '
+              f'chunk time summed {sum(two.values()) / sum(one.values()):.2f}x one core\'s')
+        print('  per site: chunk us per step, two threads summed / one core, inflation')
+        for fn in sorted(one, key=lambda f: -one[f])[:12]:
+            print(f'    {two[fn] / n:9.1f} {one[fn] / n:9.1f} {two[fn] / one[fn]:6.2f}  {name(fn)}')
 
 
 if __name__ == '__main__':
