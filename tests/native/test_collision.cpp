@@ -476,9 +476,7 @@ TEST_F(CollisionGles, FrictionHoldsAClothOnABoxCorner) {
 TEST_F(CollisionGles, FrictionalSphereGivesTheClothNoEnergy) {
     expect_frictional_sphere_gives_the_cloth_no_energy(DRAPE_BACKEND_GLES);
 }
-#endif
 
-#ifdef DRAPE_TEST_GLES
 // Those substeps only while a collider can reach the cloth: a curtain pinned along its top row (1 m,
 // 17^2, tethers on as by default: no particle gets farther than 1.1 times its rest distance from the
 // pins) keeps 16 substeps beside a sphere 3 m away, with the same bits as without it, and takes 32 from
