@@ -120,13 +120,13 @@ def main():
     for (a, b), v in sorted(gap.items(), key=lambda x: -x[1])[:8]:
         print(f'    {v / n:8.2f}  {name(a)} -> {name(b)}')
     if solo:
-        two, wall_two = site_chunks(per_us, steps, recs)
+        two = {fn: a[1] + a[2] for fn, a in site.items()}  # both threads' chunks, as summed above
         one, wall_one = site_chunks(*load_steps(solo, first, last))
-        print(f'  against {solo} (one core, same steps): wall {wall_one / wall_two:.2f}x faster on two threads; '
+        print(f'  against {solo} (one core, same steps): wall {wall_one / wall.sum():.2f}x faster on two threads; '
               f'chunk time summed {sum(two.values()) / sum(one.values()):.2f}x one core\'s')
         print('  per site: chunk us per step, two threads summed / one core, inflation')
         for fn in sorted(one, key=lambda f: -one[f])[:12]:
-            print(f'    {two[fn] / n:9.1f} {one[fn] / n:9.1f} {two[fn] / one[fn]:6.2f}  {name(fn)}')
+            print(f'    {two.get(fn, 0.0) / n:9.1f} {one[fn] / n:9.1f} {two.get(fn, 0.0) / one[fn]:6.2f}  {name(fn)}')
 
 
 if __name__ == '__main__':
